@@ -1,0 +1,72 @@
+// The technique of stage 01: no acceleration structure. Every ray is tested against every triangle.
+//   closest():  keep the nearest hit, shrinking tmax as hits are found.
+//   occluded(): shadow rays only need to know whether anything blocks the light, so stop at the first hit.
+#pragma once
+
+#include <vector>
+
+#include "common/scene/scene.h"
+#include "common/trace/intersect.h"
+
+namespace rt {
+
+template <class T>
+class BruteForceTracer {
+public:
+    BruteForceTracer(const Scene& scene, IntersectMethod method) : method_(method) {
+        vertices_.reserve(scene.positions.size());
+        for (const glm::vec3& p : scene.positions) vertices_.emplace_back(p);   // converted to T once
+    }
+
+    bool closest(const Ray<T>& ray, Hit<T>& hit, RayCounters& counters) const {
+        Ray<T> r = ray;
+        const std::size_t n = vertices_.size() / 3;
+        counters.intersection_tests += n;
+        if (method_ == IntersectMethod::Watertight) {
+            const WatertightRay<T> w(r.direction);
+            for (std::size_t i = 0; i < n; ++i) {
+                T t, u, v;
+                if (intersect_watertight(r, w, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v))
+                    record(r, hit, i, t, u, v);
+            }
+        } else {
+            for (std::size_t i = 0; i < n; ++i) {
+                T t, u, v;
+                if (intersect_moller(r, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v))
+                    record(r, hit, i, t, u, v);
+            }
+        }
+        return hit.valid();
+    }
+
+    bool occluded(const Ray<T>& ray, RayCounters& counters) const {
+        const std::size_t n = vertices_.size() / 3;
+        const WatertightRay<T> w(ray.direction);
+        for (std::size_t i = 0; i < n; ++i) {
+            T t, u, v;
+            const bool hit = method_ == IntersectMethod::Watertight
+                                 ? intersect_watertight(ray, w, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v)
+                                 : intersect_moller(ray, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v);
+            if (hit) {
+                counters.intersection_tests += i + 1;   // early exit: count only the tests made
+                return true;
+            }
+        }
+        counters.intersection_tests += n;
+        return false;
+    }
+
+private:
+    static void record(Ray<T>& r, Hit<T>& hit, std::size_t i, T t, T u, T v) {
+        r.tmax = t;   // later triangles must beat this hit
+        hit.t = t;
+        hit.u = u;
+        hit.v = v;
+        hit.triangle = std::int32_t(i);
+    }
+
+    IntersectMethod method_;
+    std::vector<Vec3<T>> vertices_;
+};
+
+}  // namespace rt

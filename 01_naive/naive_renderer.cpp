@@ -1,0 +1,72 @@
+#include "naive_renderer.h"
+
+#include <chrono>
+
+#include <CLI/CLI.hpp>
+
+#include "brute_force_tracer.h"
+#include "common/app/pixel_samples.h"
+#include "common/app/progress.h"
+#include "common/trace/whitted.h"
+
+namespace rt {
+
+namespace {
+
+template <class T>
+FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
+    FrameResult result;
+    result.image = Image(settings.width, settings.height);
+    const auto t0 = std::chrono::steady_clock::now();
+    const BruteForceTracer<T> tracer(scene, settings.intersect);
+    const auto t1 = std::chrono::steady_clock::now();
+
+    WhittedSettings ws;
+    ws.max_depth = settings.max_depth;
+    ws.cutoff = settings.cutoff;
+    ws.fresnel = settings.fresnel;
+    ws.offset = settings.offset;
+    ws.epsilon = settings.epsilon;
+    ws.effects = settings.effects;
+    const Whitted<T, BruteForceTracer<T>> whitted(scene, tracer, ws);
+    const std::vector<glm::vec2> samples = pixel_sample_offsets(settings.spp);
+
+    Progress progress("01_naive", settings.height, !settings.quiet);
+    parallel_rows(settings.height, resolve_thread_count(settings.threads), progress, result.stats.counters,
+                  [&](int y, RayCounters& counters) {
+                      for (int x = 0; x < settings.width; ++x) {
+                          glm::vec3 sum(0.0f);
+                          for (const glm::vec2& s : samples) {
+                              const Ray<T> ray = camera_ray<T>(scene.camera, settings.width, settings.height,
+                                                               T(x) + T(s.x), T(y) + T(s.y));
+                              counters.rays[int(RayKind::Primary)]++;
+                              sum += whitted.radiance(ray, 0, glm::vec3(1.0f), counters);
+                          }
+                          result.image.at(x, y) = sum / float(samples.size());
+                      }
+                  });
+    progress.finish();
+    const auto t2 = std::chrono::steady_clock::now();
+    result.stats.build_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    result.stats.trace_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
+    result.extra["precision"] = sizeof(T) == sizeof(double) ? "double" : "float";
+    return result;
+}
+
+}  // namespace
+
+void NaiveRenderer::add_options(CLI::App& app) {
+    app.add_option("--precision", precision, "Arithmetic of the ray/triangle tests and hit points: float or double")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, Precision>{{"float", Precision::Float},
+                                                                             {"double", Precision::Double}},
+                                            CLI::ignore_case))
+        ->default_str("float");
+}
+
+std::string NaiveRenderer::renderer_name() const { return cpu_model_name(); }
+
+FrameResult NaiveRenderer::render(const Scene& scene, const RenderSettings& settings) {
+    return precision == Precision::Double ? render_with<double>(scene, settings) : render_with<float>(scene, settings);
+}
+
+}  // namespace rt

@@ -1,0 +1,127 @@
+#include "image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+
+#include <unistd.h>
+
+#include "../trace/shading.h"
+
+#ifdef RT_PORTABLE
+#include <stb/stb_image_write.h>
+#else
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imageio.h>
+#endif
+
+namespace rt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+bool is_float_format(const std::string& ext) { return ext == ".exr" || ext == ".hdr"; }
+
+// sRGB-encoded 8-bit RGB, the same quantisation for every writer (round to nearest).
+std::vector<std::uint8_t> to_srgb8(const Image& image) {
+    std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float v = image.pixels[i][c];
+            bytes[i * 3 + std::size_t(c)] = std::uint8_t(std::lround(linear_to_srgb(std::isfinite(v) ? v : 0.0f) * 255.0f));
+        }
+    return bytes;
+}
+
+// A temporary name beside the target, keeping the extension so the writer picks the same format.
+std::string temporary_path(const std::string& path) {
+    const fs::path p(path);
+    return (p.parent_path() / ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string()))
+        .string();
+}
+
+}  // namespace
+
+bool is_supported_image_path(const std::string& path) {
+    const std::string ext = lower_extension(path);
+#ifdef RT_PORTABLE
+    return ext == ".png";
+#else
+    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".exr" || ext == ".hdr";
+#endif
+}
+
+void write_image(const std::string& path, const Image& image) {
+    if (!is_supported_image_path(path)) throw std::runtime_error("unsupported image type: " + path);
+    const std::string ext = lower_extension(path);
+    const std::string tmp = temporary_path(path);
+    bool ok = false;
+    std::string error;
+#ifdef RT_PORTABLE
+    const std::vector<std::uint8_t> bytes = to_srgb8(image);
+    ok = stbi_write_png(tmp.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3) != 0;
+    if (!ok) error = "stb_image_write failed";
+#else
+    auto out = OIIO::ImageOutput::create(tmp);
+    if (!out) {
+        error = OIIO::geterror();
+    } else if (is_float_format(ext)) {
+        OIIO::ImageSpec spec(image.width, image.height, 3, ext == ".exr" ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+        if (ext == ".exr") spec.format = OIIO::TypeDesc::FLOAT;   // full float: the NaN/Inf checks need exact values
+        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) && out->close();
+        if (!ok) error = out->geterror();
+    } else {
+        const std::vector<std::uint8_t> bytes = to_srgb8(image);
+        OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", "sRGB");
+        if (ext == ".jpg" || ext == ".jpeg") spec.attribute("Compression", "jpeg:95");
+        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) && out->close();
+        if (!ok) error = out->geterror();
+    }
+#endif
+    std::error_code ec;
+    if (ok) fs::rename(tmp, path, ec);
+    if (!ok || ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot write image " + path + ": " + (error.empty() ? ec.message() : error));
+    }
+}
+
+Image read_image(const std::string& path) {
+#ifdef RT_PORTABLE
+    throw std::runtime_error("reading images is not available in the portable build: " + path);
+#else
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw std::runtime_error("cannot read image " + path + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    const int channels = spec.nchannels;
+    std::vector<float> data(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(channels));
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw std::runtime_error("cannot read image " + path + ": " + in->geterror());
+    const bool linear_file = spec.format.is_floating_point();
+    Image image(spec.width, spec.height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float v = data[i * std::size_t(channels) + std::size_t(std::min(c, channels - 1))];
+            image.pixels[i][c] = linear_file ? v : srgb_to_linear(v);
+        }
+    return image;
+#endif
+}
+
+std::size_t count_non_finite(const Image& image) {
+    return std::size_t(std::count_if(image.pixels.begin(), image.pixels.end(), [](const glm::vec3& p) {
+        return !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    }));
+}
+
+}  // namespace rt

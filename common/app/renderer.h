@@ -1,0 +1,55 @@
+// The one interface every stage implements, and the settings the shared command line gives it.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "../scene/effects.h"
+#include "../scene/scene.h"
+#include "../trace/intersect.h"
+#include "../trace/offset.h"
+#include "../trace/shading.h"
+#include "image.h"
+#include "stats.h"
+
+namespace CLI { class App; }
+
+namespace rt {
+
+// Everything the shared command line decides about a frame (see common/app/options.cpp for the flags).
+struct RenderSettings {
+    int width = 640;
+    int height = 480;
+    int max_depth = 5;                                   // Whitted recursion depth (0 = primary hits only)
+    int spp = 1;                                         // samples per pixel (anti-aliasing)
+    float cutoff = kDefaultCutoff;                       // contribution cut-off on a path's weight
+    FresnelMode fresnel = FresnelMode::Exact;
+    IntersectMethod intersect = IntersectMethod::Watertight;
+    OffsetMethod offset = OffsetMethod::Robust;
+    float epsilon = kDefaultEpsilon;                     // used by --offset epsilon
+    Effects effects;                                     // what to simulate (already resolved from --effects)
+    int threads = 0;                                     // 0 = all hardware threads
+    bool quiet = false;
+};
+
+struct FrameResult {
+    Image image;
+    FrameStats stats;
+    nlohmann::json extra = nlohmann::json::object();     // stage-specific stats keys
+};
+
+class Renderer {
+public:
+    virtual ~Renderer() = default;
+    // Adds the stage's own flags (e.g. --precision for 01, --backend for GPU stages). Called before parsing.
+    virtual void add_options(CLI::App& /*app*/) {}
+    // Called once after parsing, before the first frame (create GL contexts here). Throws on failure.
+    virtual void initialize() {}
+    // CPU model or GL_RENDERER.
+    virtual std::string renderer_name() const = 0;
+    // Renders one frame of a flattened scene.
+    virtual FrameResult render(const Scene& scene, const RenderSettings& settings) = 0;
+};
+
+}  // namespace rt

@@ -1,0 +1,64 @@
+#include "stats.h"
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include <unistd.h>
+
+namespace rt {
+
+nlohmann::json make_stats_json(const std::string& stage, const std::string& scene, int width, int height,
+                               const std::string& renderer, const std::vector<std::string>& effects,
+                               const FrameStats& s, const nlohmann::json& extra) {
+    nlohmann::json j;
+    j["stage"] = stage;
+    j["scene"] = scene;
+    j["width"] = width;
+    j["height"] = height;
+    j["renderer"] = renderer;
+    j["effects"] = effects;
+    j["rays"] = {{"primary", s.counters.rays[int(RayKind::Primary)]},
+                 {"shadow", s.counters.rays[int(RayKind::Shadow)]},
+                 {"reflection", s.counters.rays[int(RayKind::Reflection)]},
+                 {"refraction", s.counters.rays[int(RayKind::Refraction)]}};
+    j["intersection_tests"] = s.counters.intersection_tests;
+    j["time_ms"] = {{"build", s.build_ms}, {"trace", s.trace_ms}, {"total", s.total_ms}};
+    j["mrays_per_s"] = s.mrays_per_s();
+    if (extra.is_object()) j.update(extra);
+    return j;
+}
+
+void write_json(const std::string& path, const nlohmann::json& json) {
+    namespace fs = std::filesystem;
+    const fs::path p(path);
+    const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(::getpid()));
+    {
+        std::ofstream out(tmp);
+        out << json.dump(2) << '\n';
+        if (!out) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error("cannot write " + path);
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, p, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error("cannot write " + path + ": " + ec.message());
+    }
+}
+
+std::string cpu_model_name() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.starts_with("model name")) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+        }
+    return "unknown CPU";
+}
+
+}  // namespace rt

@@ -1,0 +1,27 @@
+// Procedural scenes built into every stage, selected with --scene builtin:NAME.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace rt {
+
+// Names accepted by make_builtin_scene ("spheres" takes a count: "spheres:64").
+//   whitted  Whitted's 1980 scene: checkerboard floor, glass sphere, mirror sphere, one point light.
+//   cornell  Cornell box with a mirror block and a glass sphere, one point light under the ceiling.
+//   diffuse  Only diffuse surfaces and one light: shadows and nothing else.
+//   dynamic  Objects that move over time (glTF animations), for --frames.
+//   spheres:N  N tessellated spheres on a floor, for scaling tests.
+//   far      The whitted scene and its camera translated by (1e4, 1e4, 1e4): a fixed epsilon offset fails there.
+std::vector<std::string> builtin_scene_names();
+
+// Throws SceneError for an unknown name or a bad count.
+SceneAsset make_builtin_scene(const std::string& name);
+
+// A UV sphere (shared seam and pole vertices, indexed) and a unit cube, used by the built-in scenes and the tests.
+Primitive make_uv_sphere(const glm::vec3& center, float radius, int segments, int rings, int material);
+Primitive make_box(const glm::vec3& lo, const glm::vec3& hi, int material);
+
+}  // namespace rt

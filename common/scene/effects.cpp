@@ -1,0 +1,92 @@
+// Which Whitted effects a scene needs, and the --effects option.
+#include "effects.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace rt {
+
+std::vector<std::string> Effects::names() const {
+    std::vector<std::string> out;
+    if (shadows) out.push_back("shadows");
+    if (reflections) out.push_back("reflections");
+    if (refractions) out.push_back("refractions");
+    if (textures) out.push_back("textures");
+    return out;
+}
+
+// docs/shading.md: a surface mirrors when it is not fully rough and has a specular lobe: metallic, or a dielectric
+// whose specular weight and colour are non-zero and whose index of refraction differs from 1 (F0 > 0).
+bool material_reflects(const Material& m) {
+    const float max_specular_color = std::max({m.specular_color.r, m.specular_color.g, m.specular_color.b});
+    const bool dielectric_mirror = m.specular > 0.0f && max_specular_color > 0.0f && m.ior != 1.0f;
+    return m.roughness < 1.0f && (m.metallic > 0.0f || dielectric_mirror);
+}
+
+// Only the dielectric part of a material can transmit.
+bool material_transmits(const Material& m) { return m.transmission > 0.0f && m.metallic < 1.0f; }
+
+// Only materials used by at least one triangle count. Shadows are called for whenever a light shines on geometry: the
+// analysis is conservative and does not try to prove that nothing can occlude anything.
+Effects analyze_effects(const Scene& scene) {
+    std::vector<bool> used(scene.materials.size(), false);
+    for (std::uint32_t id : scene.material_ids)
+        if (id < used.size()) used[id] = true;
+    Effects e;
+    e.shadows = !scene.lights.empty() && scene.triangle_count() > 0;
+    for (std::size_t i = 0; i < used.size(); ++i) {
+        if (!used[i]) continue;
+        const Material& m = scene.materials[i];
+        e.reflections = e.reflections || material_reflects(m);
+        e.refractions = e.refractions || material_transmits(m);
+        const bool textured = m.base_color_texture >= 0 && std::size_t(m.base_color_texture) < scene.textures.size();
+        e.textures = e.textures || textured;
+    }
+    return e;
+}
+
+namespace {
+
+// Parses a comma list of effect names; returns false on an unknown or empty word.
+bool parse_list(const std::string& spec, Effects& out, std::string* bad_word) {
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = spec.find(',', start);
+        std::string word = spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        const auto first = word.find_first_not_of(" \t"), last = word.find_last_not_of(" \t");
+        word = first == std::string::npos ? "" : word.substr(first, last - first + 1);
+        if (word == "shadows") out.shadows = true;
+        else if (word == "reflections") out.reflections = true;
+        else if (word == "refractions") out.refractions = true;
+        else if (word == "textures") out.textures = true;
+        else {
+            if (bad_word) *bad_word = word;
+            return false;
+        }
+        if (comma == std::string::npos) return true;
+        start = comma + 1;
+    }
+}
+
+}  // namespace
+
+bool is_valid_effects_spec(const std::string& spec) {
+    if (spec == "auto" || spec == "all" || spec == "none") return true;
+    Effects ignored;
+    return parse_list(spec, ignored, nullptr);
+}
+
+Effects resolve_effects(const std::string& spec, const Scene& scene) {
+    if (spec == "auto") return analyze_effects(scene);
+    if (spec == "all") return Effects{true, true, true, true};
+    if (spec == "none") return Effects{};
+    Effects e;
+    std::string bad;
+    if (!parse_list(spec, e, &bad))
+        throw std::invalid_argument("unknown effect '" + bad +
+                                    "' in --effects (use auto, all, none or a comma list of shadows, reflections, "
+                                    "refractions, textures)");
+    return e;
+}
+
+}  // namespace rt

@@ -1,0 +1,34 @@
+// Which Whitted effects a scene calls for. The stages simulate only those: no shadow rays without a light and an
+// occluder, no reflection rays without a reflective material, no refraction rays without a transmissive one, no
+// texture lookups without a textured material.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace rt {
+
+struct Effects {
+    bool shadows = false;
+    bool reflections = false;
+    bool refractions = false;
+    bool textures = false;
+    bool operator==(const Effects&) const = default;
+    std::vector<std::string> names() const;   // e.g. {"shadows", "reflections"}
+};
+
+// What the scene needs (--effects auto).
+Effects analyze_effects(const Scene& scene);
+
+// Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures.
+// For "auto" returns analyze_effects(scene). Throws std::invalid_argument on an unknown word.
+Effects resolve_effects(const std::string& spec, const Scene& scene);
+bool is_valid_effects_spec(const std::string& spec);
+
+// Material predicates shared by the analysis and the shading code (docs/shading.md).
+bool material_reflects(const Material& m);
+bool material_transmits(const Material& m);
+
+}  // namespace rt

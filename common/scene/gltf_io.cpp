@@ -1,0 +1,848 @@
+// glTF 2.0 import and export through tinygltf. Everything read from a file is validated before use (accessor ranges,
+// indices, references between objects), so a malformed file gives a SceneError, never a crash.
+#include "gltf_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <system_error>
+
+#include <tiny_gltf.h>
+
+namespace rt {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+// tinygltf reports several lines; the user gets one.
+std::string one_line(const std::string& text) {
+    std::string out;
+    bool pending_separator = false;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            pending_separator = !out.empty();
+            continue;
+        }
+        if (pending_separator) { out += "; "; pending_separator = false; }
+        out += c;
+    }
+    while (!out.empty() && std::isspace(static_cast<unsigned char>(out.back()))) out.pop_back();
+    return out.empty() ? "unknown error" : out;
+}
+
+// Thrown inside the loader; load_gltf adds the file name.
+struct Invalid {
+    std::string reason;
+};
+[[noreturn]] void invalid(const std::string& reason) { throw Invalid{reason}; }
+
+// ---------------------------------------------------------------------------------------------------------------
+// Reading tinygltf's generic JSON values (extensions).
+
+const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key) {
+    if (!object.IsObject() || !object.Has(key)) return nullptr;
+    return &object.Get(key);
+}
+
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const std::string& name) {
+    auto it = map.find(name);
+    return it == map.end() ? nullptr : &it->second;
+}
+
+float number(const tinygltf::Value* object, const std::string& key, float fallback) {
+    if (!object) return fallback;
+    const tinygltf::Value* v = member(*object, key);
+    return v && v->IsNumber() ? float(v->GetNumberAsDouble()) : fallback;
+}
+
+glm::vec3 vec3(const tinygltf::Value* object, const std::string& key, glm::vec3 fallback) {
+    if (!object) return fallback;
+    const tinygltf::Value* v = member(*object, key);
+    if (!v || !v->IsArray() || v->ArrayLen() != 3) return fallback;
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) {
+        const tinygltf::Value& e = v->Get(i);
+        if (!e.IsNumber()) return fallback;
+        out[i] = float(e.GetNumberAsDouble());
+    }
+    return out;
+}
+
+glm::vec3 vec3(const std::vector<double>& v, glm::vec3 fallback) {
+    return v.size() == 3 ? glm::vec3(float(v[0]), float(v[1]), float(v[2])) : fallback;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Accessors (glTF 2.0, 3.6.2 "Accessors").
+
+int components(int type) {
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+    }
+}
+
+int component_size(int component_type) {
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+    }
+}
+
+// The bytes of an accessor's elements, checked against the buffer view and the buffer.
+struct AccessorView {
+    const unsigned char* data = nullptr;
+    std::size_t count = 0;
+    std::size_t stride = 0;
+    int component_type = 0;
+    int components = 0;
+    bool normalized = false;
+};
+
+AccessorView view_accessor(const tinygltf::Model& model, int index, const std::string& what) {
+    if (index < 0 || std::size_t(index) >= model.accessors.size())
+        invalid(what + ": accessor " + std::to_string(index) + " does not exist");
+    const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+    const std::string name = what + " (accessor " + std::to_string(index) + ")";
+    if (a.sparse.isSparse) invalid(name + ": sparse accessors are not supported");
+    AccessorView v;
+    v.count = a.count;
+    v.component_type = a.componentType;
+    v.components = components(a.type);
+    v.normalized = a.normalized;
+    const int csize = component_size(a.componentType);
+    if (v.components == 0 || csize == 0) invalid(name + ": unsupported type");
+    if (a.bufferView < 0 || std::size_t(a.bufferView) >= model.bufferViews.size())
+        invalid(name + ": missing or invalid bufferView");
+    const tinygltf::BufferView& bv = model.bufferViews[std::size_t(a.bufferView)];
+    if (bv.buffer < 0 || std::size_t(bv.buffer) >= model.buffers.size()) invalid(name + ": invalid buffer");
+    const std::vector<unsigned char>& buffer = model.buffers[std::size_t(bv.buffer)].data;
+    const std::size_t element = std::size_t(csize) * std::size_t(v.components);
+    v.stride = bv.byteStride ? bv.byteStride : element;
+    if (v.stride < element) invalid(name + ": byteStride smaller than an element");
+    if (v.count == 0) return v;
+    // Every byte read must lie inside the buffer view, and the view inside the buffer. Done in 64-bit with the count
+    // bounded first, so nothing overflows.
+    if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
+        invalid(name + ": bufferView exceeds its buffer");
+    if (v.count > bv.byteLength) invalid(name + ": count exceeds its bufferView");
+    const std::uint64_t end = std::uint64_t(a.byteOffset) + std::uint64_t(v.count - 1) * v.stride + element;
+    if (end > bv.byteLength) invalid(name + ": data exceeds its bufferView");
+    v.data = buffer.data() + bv.byteOffset + a.byteOffset;
+    return v;
+}
+
+// Component j of element i as a float; normalized integers map to [0, 1] or [-1, 1] (glTF 2.0, 3.11).
+float read_component(const AccessorView& v, std::size_t i, int j) {
+    const unsigned char* p = v.data + i * v.stride + std::size_t(j) * std::size_t(component_size(v.component_type));
+    switch (v.component_type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(*p) / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); return float(s) / 65535.0f; }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        std::int8_t b;
+        std::memcpy(&b, p, 1);
+        return std::max(float(b) / 127.0f, -1.0f);
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        std::int16_t s;
+        std::memcpy(&s, p, 2);
+        return std::max(float(s) / 32767.0f, -1.0f);
+    }
+    default: return 0.0f;
+    }
+}
+
+// Reads float (or, when allowed, normalized integer) elements with the given number of components, as vec4s.
+std::vector<glm::vec4> read_vectors(const tinygltf::Model& model, int index, int want_components, bool allow_normalized,
+                                    const std::string& what) {
+    const AccessorView v = view_accessor(model, index, what);
+    if (v.components != want_components)
+        invalid(what + " (accessor " + std::to_string(index) + "): expected " + std::to_string(want_components) +
+                " components");
+    const bool is_float = v.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool is_normalized = v.normalized && v.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    if (!is_float && !(allow_normalized && is_normalized))
+        invalid(what + " (accessor " + std::to_string(index) + "): unsupported component type");
+    std::vector<glm::vec4> out(v.count, glm::vec4(0.0f));
+    for (std::size_t i = 0; i < v.count; ++i)
+        for (int j = 0; j < v.components; ++j) out[i][j] = read_component(v, i, j);
+    return out;
+}
+
+std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index, const std::string& what) {
+    const AccessorView v = view_accessor(model, index, what);
+    if (v.components != 1) invalid(what + ": indices must be scalars");
+    std::vector<std::uint32_t> out(v.count);
+    for (std::size_t i = 0; i < v.count; ++i) {
+        const unsigned char* p = v.data + i * v.stride;
+        switch (v.component_type) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = *p; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); out[i] = s; break; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&out[i], p, 4); break;
+        default: invalid(what + ": indices must be unsigned byte, short or int");
+        }
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Loading.
+
+struct Loader {
+    const tinygltf::Model& model;
+    std::string warnings;
+
+    void warn(const std::string& message) { warnings += message + "\n"; }
+
+    void check_index(int i, std::size_t size, const std::string& what) const {
+        if (i < -1 || (i >= 0 && std::size_t(i) >= size))
+            invalid(what + " " + std::to_string(i) + " does not exist");
+    }
+
+    Primitive primitive(const tinygltf::Primitive& p, const std::string& name) {
+        Primitive out;
+        check_index(p.material, model.materials.size(), name + ": material");
+        out.material = p.material;
+        auto attribute = [&](const char* key) {
+            auto it = p.attributes.find(key);
+            return it == p.attributes.end() ? -1 : it->second;
+        };
+        const int position = attribute("POSITION");
+        if (position < 0) invalid(name + ": no POSITION attribute");
+        for (const glm::vec4& v : read_vectors(model, position, 3, false, name + " POSITION"))
+            out.positions.push_back(glm::vec3(v));
+        const std::size_t nv = out.positions.size();
+
+        if (const int normal = attribute("NORMAL"); normal >= 0) {
+            for (const glm::vec4& v : read_vectors(model, normal, 3, false, name + " NORMAL"))
+                out.normals.push_back(glm::vec3(v));
+            if (out.normals.size() != nv) invalid(name + ": NORMAL and POSITION counts differ");
+        }
+        if (const int uv = attribute("TEXCOORD_0"); uv >= 0) {
+            for (const glm::vec4& v : read_vectors(model, uv, 2, true, name + " TEXCOORD_0"))
+                out.uvs.push_back(glm::vec2(v));
+            if (out.uvs.size() != nv) invalid(name + ": TEXCOORD_0 and POSITION counts differ");
+        }
+        if (p.indices >= 0) {
+            out.indices = read_indices(model, p.indices, name + " indices");
+            for (std::uint32_t i : out.indices)
+                if (i >= nv)
+                    invalid(name + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) +
+                            " vertices)");
+            if (out.indices.size() % 3 != 0) {
+                warn(name + ": index count is not a multiple of 3; the rest is ignored");
+                out.indices.resize(out.indices.size() / 3 * 3);
+            }
+        } else if (nv % 3 != 0) {
+            warn(name + ": vertex count is not a multiple of 3; the rest is ignored");
+        }
+        return out;
+    }
+
+    Mesh mesh(const tinygltf::Mesh& m, std::size_t index) {
+        Mesh out;
+        out.name = m.name;
+        for (std::size_t i = 0; i < m.primitives.size(); ++i) {
+            const tinygltf::Primitive& p = m.primitives[i];
+            const std::string name = "mesh " + std::to_string(index) + " primitive " + std::to_string(i);
+            const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+            if (mode != TINYGLTF_MODE_TRIANGLES) {
+                warn(name + ": mode " + std::to_string(mode) + " is not TRIANGLES; skipped");
+                continue;
+            }
+            out.primitives.push_back(primitive(p, name));
+        }
+        return out;
+    }
+
+    Material material(const tinygltf::Material& m, std::size_t index) {
+        Material out;
+        out.name = m.name;
+        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() == 4)
+            out.base_color = glm::vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+                                       float(pbr.baseColorFactor[2]), float(pbr.baseColorFactor[3]));
+        out.metallic = float(pbr.metallicFactor);
+        out.roughness = float(pbr.roughnessFactor);
+        const std::string name = "material " + std::to_string(index);
+        if (pbr.baseColorTexture.index >= 0) {
+            check_index(pbr.baseColorTexture.index, model.textures.size(), name + ": texture");
+            if (pbr.baseColorTexture.texCoord != 0)
+                warn(name + ": baseColorTexture uses TEXCOORD_" + std::to_string(pbr.baseColorTexture.texCoord) +
+                     "; only TEXCOORD_0 is supported, texture ignored");
+            else
+                out.base_color_texture = pbr.baseColorTexture.index;
+        }
+        out.emissive = vec3(m.emissiveFactor, glm::vec3(0.0f)) *
+                       number(extension(m.extensions, "KHR_materials_emissive_strength"), "emissiveStrength", 1.0f);
+        out.transmission =
+            number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0f);
+        out.ior = number(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5f);
+        const tinygltf::Value* specular = extension(m.extensions, "KHR_materials_specular");
+        out.specular = number(specular, "specularFactor", 1.0f);
+        out.specular_color = vec3(specular, "specularColorFactor", glm::vec3(1.0f));
+        return out;
+    }
+
+    Texture texture(const tinygltf::Texture& t, std::size_t index) {
+        Texture out;
+        out.name = t.name;
+        const std::string name = "texture " + std::to_string(index);
+        check_index(t.sampler, model.samplers.size(), name + ": sampler");
+        if (t.sampler >= 0)
+            out.nearest = model.samplers[std::size_t(t.sampler)].magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        check_index(t.source, model.images.size(), name + ": image");
+        if (t.source < 0) {
+            warn(name + ": no image source; using white");
+            out.width = out.height = 1;
+            out.rgba8 = {255, 255, 255, 255};
+            return out;
+        }
+        const tinygltf::Image& img = model.images[std::size_t(t.source)];
+        if (out.name.empty()) out.name = img.name;
+        const int comps = img.component;
+        const int bytes = img.bits == 16 ? 2 : img.bits == 8 ? 1 : 0;
+        if (img.width <= 0 || img.height <= 0 || comps < 1 || comps > 4 || bytes == 0)
+            invalid(name + ": image " + std::to_string(t.source) + " could not be decoded");
+        const std::size_t pixels = std::size_t(img.width) * std::size_t(img.height);
+        if (img.image.size() < pixels * std::size_t(comps) * std::size_t(bytes))
+            invalid(name + ": image " + std::to_string(t.source) + " has too little pixel data");
+        out.width = img.width;
+        out.height = img.height;
+        out.rgba8.resize(pixels * 4);
+        // Expand grey, grey+alpha and RGB to RGBA; 16-bit channels keep their high byte.
+        auto channel = [&](std::size_t pixel, int c) -> std::uint8_t {
+            const std::size_t at = (pixel * std::size_t(comps) + std::size_t(c)) * std::size_t(bytes);
+            if (bytes == 1) return img.image[at];
+            std::uint16_t v;
+            std::memcpy(&v, &img.image[at], 2);
+            return std::uint8_t(v >> 8);
+        };
+        for (std::size_t i = 0; i < pixels; ++i) {
+            std::uint8_t* px = &out.rgba8[4 * i];
+            if (comps <= 2) {
+                px[0] = px[1] = px[2] = channel(i, 0);
+                px[3] = comps == 2 ? channel(i, 1) : 255;
+            } else {
+                for (int c = 0; c < 3; ++c) px[c] = channel(i, c);
+                px[3] = comps == 4 ? channel(i, 3) : 255;
+            }
+        }
+        return out;
+    }
+
+    Camera camera(const tinygltf::Camera& c, std::size_t index) {
+        Camera out;
+        out.name = c.name;
+        const std::string name = "camera " + std::to_string(index);
+        if (c.type == "orthographic") {
+            out.projection = Projection::Orthographic;
+            out.xmag = float(c.orthographic.xmag);
+            out.ymag = float(c.orthographic.ymag);
+            out.znear = float(c.orthographic.znear);
+            out.zfar = float(c.orthographic.zfar);
+            if (!(out.xmag != 0.0f && out.ymag != 0.0f && std::isfinite(out.xmag) && std::isfinite(out.ymag)))
+                invalid(name + ": invalid xmag/ymag");
+        } else if (c.type == "perspective") {
+            out.projection = Projection::Perspective;
+            out.yfov = float(c.perspective.yfov);
+            out.aspect = float(c.perspective.aspectRatio);
+            out.znear = float(c.perspective.znear);
+            out.zfar = float(c.perspective.zfar);
+            if (!(out.yfov > 0.0f && out.yfov < 3.14159f)) invalid(name + ": invalid yfov");
+            if (!(out.aspect >= 0.0f) || !std::isfinite(out.aspect)) out.aspect = 0.0f;
+        } else {
+            invalid(name + ": unknown type '" + c.type + "'");
+        }
+        return out;
+    }
+
+    Light light(const tinygltf::Light& l, std::size_t index) {
+        Light out;
+        out.name = l.name;
+        if (l.type == "point") out.type = LightType::Point;
+        else if (l.type == "spot") out.type = LightType::Spot;
+        else if (l.type == "directional") out.type = LightType::Directional;
+        else {
+            warn("light " + std::to_string(index) + ": unknown type '" + l.type + "'; it is turned off");
+            out.intensity = 0.0f;
+            return out;
+        }
+        out.color = vec3(l.color, glm::vec3(1.0f));
+        out.intensity = float(l.intensity);
+        out.range = float(l.range);
+        out.inner_cone = float(l.spot.innerConeAngle);
+        out.outer_cone = float(l.spot.outerConeAngle);
+        return out;
+    }
+
+    Node node(const tinygltf::Node& n, std::size_t index) {
+        Node out;
+        out.name = n.name;
+        const std::string name = "node " + std::to_string(index);
+        if (n.matrix.size() == 16) {
+            glm::mat4 m;
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) m[c][r] = float(n.matrix[std::size_t(4 * c + r)]);   // column-major
+            out.matrix = m;
+        } else {
+            if (n.translation.size() == 3) out.translation = vec3(n.translation, glm::vec3(0.0f));
+            if (n.scale.size() == 3) out.scale = vec3(n.scale, glm::vec3(1.0f));
+            if (n.rotation.size() == 4)   // glTF stores x, y, z, w
+                out.rotation = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                                         float(n.rotation[2]));
+        }
+        check_index(n.mesh, model.meshes.size(), name + ": mesh");
+        check_index(n.camera, model.cameras.size(), name + ": camera");
+        out.mesh = n.mesh;
+        out.camera = n.camera;
+        if (const tinygltf::Value* lights = extension(n.extensions, "KHR_lights_punctual")) {
+            const tinygltf::Value* l = member(*lights, "light");
+            if (!l || !l->IsNumber()) invalid(name + ": KHR_lights_punctual without a light index");
+            out.light = l->GetNumberAsInt();
+            check_index(out.light, model.lights.size(), name + ": light");
+        }
+        for (int child : n.children) {
+            if (child < 0 || std::size_t(child) >= model.nodes.size())
+                invalid(name + ": child node " + std::to_string(child) + " does not exist");
+            out.children.push_back(child);
+        }
+        return out;
+    }
+
+    Animation animation(const tinygltf::Animation& a, std::size_t index, const std::vector<Node>& nodes) {
+        Animation out;
+        out.name = a.name;
+        for (std::size_t i = 0; i < a.channels.size(); ++i) {
+            const tinygltf::AnimationChannel& ch = a.channels[i];
+            const std::string name = "animation " + std::to_string(index) + " channel " + std::to_string(i);
+            AnimationChannel c;
+            if (ch.target_path == "translation") c.path = AnimationPath::Translation;
+            else if (ch.target_path == "rotation") c.path = AnimationPath::Rotation;
+            else if (ch.target_path == "scale") c.path = AnimationPath::Scale;
+            else {
+                warn(name + ": path '" + ch.target_path + "' is not supported; ignored");
+                continue;
+            }
+            if (ch.target_node < 0) {
+                warn(name + ": no target node; ignored");
+                continue;
+            }
+            if (std::size_t(ch.target_node) >= nodes.size())
+                invalid(name + ": node " + std::to_string(ch.target_node) + " does not exist");
+            if (nodes[std::size_t(ch.target_node)].matrix) warn(name + ": targets a node with a matrix; ignored");
+            c.node = ch.target_node;
+            if (ch.sampler < 0 || std::size_t(ch.sampler) >= a.samplers.size())
+                invalid(name + ": sampler " + std::to_string(ch.sampler) + " does not exist");
+            const tinygltf::AnimationSampler& s = a.samplers[std::size_t(ch.sampler)];
+            if (s.interpolation == "STEP") c.interpolation = Interpolation::Step;
+            else if (s.interpolation == "CUBICSPLINE") c.interpolation = Interpolation::CubicSpline;
+            else if (s.interpolation == "LINEAR" || s.interpolation.empty()) c.interpolation = Interpolation::Linear;
+            else invalid(name + ": unknown interpolation '" + s.interpolation + "'");
+
+            for (const glm::vec4& t : read_vectors(model, s.input, 1, false, name + " input")) c.times.push_back(t.x);
+            for (std::size_t k = 0; k < c.times.size(); ++k)
+                if (!std::isfinite(c.times[k]) || (k > 0 && c.times[k] < c.times[k - 1]))
+                    invalid(name + ": key times must be finite and increasing");
+            const int comps = c.path == AnimationPath::Rotation ? 4 : 3;
+            c.values = read_vectors(model, s.output, comps, c.path == AnimationPath::Rotation, name + " output");
+            const std::size_t per_key = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
+            if (c.values.size() != per_key * c.times.size()) invalid(name + ": input and output counts do not match");
+            if (c.times.empty()) continue;
+            out.channels.push_back(std::move(c));
+        }
+        return out;
+    }
+
+    SceneAsset asset() {
+        SceneAsset out;
+        for (std::size_t i = 0; i < model.meshes.size(); ++i) out.meshes.push_back(mesh(model.meshes[i], i));
+        for (std::size_t i = 0; i < model.materials.size(); ++i)
+            out.materials.push_back(material(model.materials[i], i));
+        for (std::size_t i = 0; i < model.textures.size(); ++i) out.textures.push_back(texture(model.textures[i], i));
+        for (std::size_t i = 0; i < model.cameras.size(); ++i) out.cameras.push_back(camera(model.cameras[i], i));
+        for (std::size_t i = 0; i < model.lights.size(); ++i) out.lights.push_back(light(model.lights[i], i));
+        for (std::size_t i = 0; i < model.nodes.size(); ++i) out.nodes.push_back(node(model.nodes[i], i));
+
+        // The hierarchy must be a forest (glTF 2.0, 3.5.2): every node has at most one parent, and scene roots none.
+        std::vector<int> parents(out.nodes.size(), 0);
+        for (const Node& n : out.nodes)
+            for (int child : n.children)
+                if (++parents[std::size_t(child)] > 1)
+                    invalid("node " + std::to_string(child) + " has more than one parent");
+
+        if (!model.scenes.empty()) {
+            int s = model.defaultScene;
+            if (s < 0 || std::size_t(s) >= model.scenes.size()) s = 0;
+            const tinygltf::Scene& scene = model.scenes[std::size_t(s)];
+            for (int root : scene.nodes) {
+                if (root < 0 || std::size_t(root) >= out.nodes.size())
+                    invalid("scene " + std::to_string(s) + ": node " + std::to_string(root) + " does not exist");
+                if (parents[std::size_t(root)] != 0)
+                    invalid("scene " + std::to_string(s) + ": node " + std::to_string(root) + " is not a root");
+                out.roots.push_back(root);
+            }
+            // Our own extra: the background colour (written by save_gltf).
+            if (const tinygltf::Value* bg = member(scene.extras, "rt_background"); bg && bg->IsArray())
+                out.background = vec3(&scene.extras, "rt_background", glm::vec3(0.0f));
+        } else {
+            for (std::size_t i = 0; i < out.nodes.size(); ++i)
+                if (parents[i] == 0) out.roots.push_back(int(i));
+        }
+        // With one parent per node and parentless roots, a cycle cannot be reached from the roots.
+
+        for (std::size_t i = 0; i < model.animations.size(); ++i)
+            out.animations.push_back(animation(model.animations[i], i, out.nodes));
+        return out;
+    }
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Saving.
+
+struct Writer {
+    tinygltf::Model model;
+    std::vector<std::string> extensions;
+
+    void use_extension(const std::string& name) {
+        if (std::find(extensions.begin(), extensions.end(), name) == extensions.end()) extensions.push_back(name);
+    }
+
+    // Appends raw bytes to buffer 0 (4-byte aligned) as a new buffer view; returns its index.
+    int add_view(const void* bytes, std::size_t size, int target) {
+        std::vector<unsigned char>& data = model.buffers[0].data;
+        while (data.size() % 4) data.push_back(0);
+        tinygltf::BufferView view;
+        view.buffer = 0;
+        view.byteOffset = data.size();
+        view.byteLength = size;
+        view.target = target;
+        const auto* p = static_cast<const unsigned char*>(bytes);
+        data.insert(data.end(), p, p + size);
+        model.bufferViews.push_back(view);
+        return int(model.bufferViews.size() - 1);
+    }
+
+    // A tightly packed float accessor of `comps` components per element, with min/max.
+    int add_floats(const float* values, std::size_t count, int comps, int type, int target) {
+        tinygltf::Accessor a;
+        a.bufferView = add_view(values, count * std::size_t(comps) * sizeof(float), target);
+        a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+        a.count = count;
+        a.type = type;
+        a.minValues.assign(std::size_t(comps), std::numeric_limits<double>::infinity());
+        a.maxValues.assign(std::size_t(comps), -std::numeric_limits<double>::infinity());
+        for (std::size_t i = 0; i < count; ++i)
+            for (std::size_t j = 0; j < std::size_t(comps); ++j) {
+                a.minValues[j] = std::min(a.minValues[j], double(values[i * std::size_t(comps) + j]));
+                a.maxValues[j] = std::max(a.maxValues[j], double(values[i * std::size_t(comps) + j]));
+            }
+        model.accessors.push_back(a);
+        return int(model.accessors.size() - 1);
+    }
+
+    int add_indices(const std::vector<std::uint32_t>& indices) {
+        tinygltf::Accessor a;
+        a.bufferView = add_view(indices.data(), indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+        a.count = indices.size();
+        a.type = TINYGLTF_TYPE_SCALAR;
+        model.accessors.push_back(a);
+        return int(model.accessors.size() - 1);
+    }
+
+    tinygltf::Mesh mesh(const Mesh& m) {
+        tinygltf::Mesh out;
+        out.name = m.name;
+        for (const Primitive& p : m.primitives) {
+            if (p.positions.empty()) continue;   // an accessor may not be empty (glTF 2.0, 5.1.2)
+            tinygltf::Primitive prim;
+            prim.mode = TINYGLTF_MODE_TRIANGLES;
+            prim.material = p.material >= 0 && std::size_t(p.material) < model.materials.size() ? p.material : -1;
+            prim.attributes["POSITION"] = add_floats(&p.positions[0].x, p.positions.size(), 3, TINYGLTF_TYPE_VEC3,
+                                                     TINYGLTF_TARGET_ARRAY_BUFFER);
+            if (p.normals.size() == p.positions.size())
+                prim.attributes["NORMAL"] = add_floats(&p.normals[0].x, p.normals.size(), 3, TINYGLTF_TYPE_VEC3,
+                                                       TINYGLTF_TARGET_ARRAY_BUFFER);
+            if (p.uvs.size() == p.positions.size())
+                prim.attributes["TEXCOORD_0"] =
+                    add_floats(&p.uvs[0].x, p.uvs.size(), 2, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
+            if (!p.indices.empty()) prim.indices = add_indices(p.indices);
+            out.primitives.push_back(prim);
+        }
+        return out;
+    }
+
+    tinygltf::Material material(const Material& m) {
+        tinygltf::Material out;
+        out.name = m.name;
+        out.pbrMetallicRoughness.baseColorFactor = {m.base_color.r, m.base_color.g, m.base_color.b, m.base_color.a};
+        out.pbrMetallicRoughness.metallicFactor = m.metallic;
+        out.pbrMetallicRoughness.roughnessFactor = m.roughness;
+        if (m.base_color_texture >= 0) out.pbrMetallicRoughness.baseColorTexture.index = m.base_color_texture;
+        // emissiveFactor is limited to [0, 1]; larger values go through KHR_materials_emissive_strength.
+        const float strength = std::max({m.emissive.r, m.emissive.g, m.emissive.b});
+        if (strength > 1.0f) {
+            const glm::vec3 e = m.emissive / strength;
+            out.emissiveFactor = {e.r, e.g, e.b};
+            out.extensions["KHR_materials_emissive_strength"] =
+                object({{"emissiveStrength", tinygltf::Value(double(strength))}});
+            use_extension("KHR_materials_emissive_strength");
+        } else {
+            out.emissiveFactor = {m.emissive.r, m.emissive.g, m.emissive.b};
+        }
+        if (m.transmission != 0.0f) {
+            out.extensions["KHR_materials_transmission"] =
+                object({{"transmissionFactor", tinygltf::Value(double(m.transmission))}});
+            use_extension("KHR_materials_transmission");
+        }
+        if (m.ior != 1.5f) {
+            out.extensions["KHR_materials_ior"] = object({{"ior", tinygltf::Value(double(m.ior))}});
+            use_extension("KHR_materials_ior");
+        }
+        if (m.specular != 1.0f || m.specular_color != glm::vec3(1.0f)) {
+            tinygltf::Value::Array color{tinygltf::Value(double(m.specular_color.r)),
+                                         tinygltf::Value(double(m.specular_color.g)),
+                                         tinygltf::Value(double(m.specular_color.b))};
+            out.extensions["KHR_materials_specular"] = object({{"specularFactor", tinygltf::Value(double(m.specular))},
+                                                               {"specularColorFactor", tinygltf::Value(color)}});
+            use_extension("KHR_materials_specular");
+        }
+        return out;
+    }
+
+    static tinygltf::Value object(std::initializer_list<std::pair<const std::string, tinygltf::Value>> members) {
+        return tinygltf::Value(tinygltf::Value::Object(members));
+    }
+
+    void texture(const Texture& t, std::size_t index) {
+        if (t.width <= 0 || t.height <= 0 || t.rgba8.size() != std::size_t(t.width) * std::size_t(t.height) * 4)
+            invalid("texture " + std::to_string(index) + " has inconsistent size and pixel data");
+        tinygltf::Image img;
+        img.width = t.width;
+        img.height = t.height;
+        img.component = 4;
+        img.bits = 8;
+        img.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        img.image = t.rgba8;
+        img.mimeType = "image/png";   // tinygltf encodes it as an embedded PNG data URI
+        model.images.push_back(img);
+        tinygltf::Sampler s;
+        s.magFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+        s.minFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+        model.samplers.push_back(s);
+        tinygltf::Texture tex;
+        tex.name = t.name;
+        tex.source = int(model.images.size() - 1);
+        tex.sampler = int(model.samplers.size() - 1);
+        model.textures.push_back(tex);
+    }
+
+    static tinygltf::Camera camera(const Camera& c) {
+        tinygltf::Camera out;
+        out.name = c.name;
+        if (c.projection == Projection::Orthographic) {
+            out.type = "orthographic";
+            out.orthographic.xmag = c.xmag;
+            out.orthographic.ymag = c.ymag;
+            out.orthographic.znear = c.znear;
+            out.orthographic.zfar = c.zfar;
+        } else {
+            out.type = "perspective";
+            out.perspective.yfov = c.yfov;
+            out.perspective.aspectRatio = c.aspect;
+            out.perspective.znear = c.znear;
+            out.perspective.zfar = c.zfar;
+        }
+        return out;
+    }
+
+    static tinygltf::Light light(const Light& l) {
+        tinygltf::Light out;
+        out.name = l.name;
+        out.type = l.type == LightType::Spot ? "spot" : l.type == LightType::Directional ? "directional" : "point";
+        out.color = {l.color.r, l.color.g, l.color.b};
+        out.intensity = l.intensity;
+        out.range = l.range;
+        out.spot.innerConeAngle = l.inner_cone;
+        out.spot.outerConeAngle = l.outer_cone;
+        return out;
+    }
+
+    tinygltf::Node node(const Node& n, std::size_t node_count) {
+        tinygltf::Node out;
+        out.name = n.name;
+        if (n.matrix) {
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) out.matrix.push_back((*n.matrix)[c][r]);
+        } else {
+            if (n.translation != glm::vec3(0.0f)) out.translation = {n.translation.x, n.translation.y, n.translation.z};
+            if (n.rotation != glm::quat(1, 0, 0, 0))
+                out.rotation = {n.rotation.x, n.rotation.y, n.rotation.z, n.rotation.w};
+            if (n.scale != glm::vec3(1.0f)) out.scale = {n.scale.x, n.scale.y, n.scale.z};
+        }
+        out.mesh = n.mesh >= 0 && std::size_t(n.mesh) < model.meshes.size() ? n.mesh : -1;
+        out.camera = n.camera >= 0 && std::size_t(n.camera) < model.cameras.size() ? n.camera : -1;
+        if (n.light >= 0 && std::size_t(n.light) < model.lights.size())
+            out.extensions["KHR_lights_punctual"] = object({{"light", tinygltf::Value(n.light)}});
+        for (int child : n.children)
+            if (child >= 0 && std::size_t(child) < node_count) out.children.push_back(child);
+        return out;
+    }
+
+    tinygltf::Animation animation(const Animation& a, std::size_t node_count) {
+        tinygltf::Animation out;
+        out.name = a.name;
+        for (const AnimationChannel& c : a.channels) {
+            const std::size_t per_key = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
+            if (c.times.empty() || c.values.size() != per_key * c.times.size()) continue;
+            if (c.node < 0 || std::size_t(c.node) >= node_count) continue;
+            tinygltf::AnimationSampler s;
+            s.input = add_floats(c.times.data(), c.times.size(), 1, TINYGLTF_TYPE_SCALAR, 0);
+            const bool rotation = c.path == AnimationPath::Rotation;
+            std::vector<float> values;
+            for (const glm::vec4& v : c.values)
+                for (int j = 0; j < (rotation ? 4 : 3); ++j) values.push_back(v[j]);
+            s.output = add_floats(values.data(), c.values.size(), rotation ? 4 : 3,
+                                  rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, 0);
+            s.interpolation = c.interpolation == Interpolation::Step          ? "STEP"
+                              : c.interpolation == Interpolation::CubicSpline ? "CUBICSPLINE"
+                                                                              : "LINEAR";
+            out.samplers.push_back(s);
+            tinygltf::AnimationChannel ch;
+            ch.sampler = int(out.samplers.size() - 1);
+            ch.target_node = c.node;
+            ch.target_path = c.path == AnimationPath::Translation ? "translation" : rotation ? "rotation" : "scale";
+            out.channels.push_back(ch);
+        }
+        return out;
+    }
+
+    void build(const SceneAsset& asset) {
+        model.asset.version = "2.0";
+        model.asset.generator = "raytracing-course rt_scene";
+        model.buffers.emplace_back();
+        for (const Material& m : asset.materials) model.materials.push_back(material(m));
+        for (std::size_t i = 0; i < asset.textures.size(); ++i) texture(asset.textures[i], i);
+        for (tinygltf::Material& m : model.materials)
+            if (m.pbrMetallicRoughness.baseColorTexture.index >= int(model.textures.size()))
+                m.pbrMetallicRoughness.baseColorTexture.index = -1;
+        for (const Mesh& m : asset.meshes) model.meshes.push_back(mesh(m));
+        for (const Camera& c : asset.cameras) model.cameras.push_back(camera(c));
+        for (const Light& l : asset.lights) model.lights.push_back(light(l));
+        for (const Node& n : asset.nodes) model.nodes.push_back(node(n, asset.nodes.size()));
+        for (const Animation& a : asset.animations) {
+            tinygltf::Animation anim = animation(a, asset.nodes.size());
+            if (!anim.channels.empty()) model.animations.push_back(std::move(anim));
+        }
+        tinygltf::Scene scene;
+        scene.name = asset.name;
+        for (int root : asset.roots)
+            if (root >= 0 && std::size_t(root) < asset.nodes.size()) scene.nodes.push_back(root);
+        scene.extras = object({{"rt_background", tinygltf::Value(tinygltf::Value::Array{
+                                                     tinygltf::Value(double(asset.background.r)),
+                                                     tinygltf::Value(double(asset.background.g)),
+                                                     tinygltf::Value(double(asset.background.b))})}});
+        model.scenes.push_back(scene);
+        model.defaultScene = 0;
+        if (model.buffers[0].data.empty()) model.buffers.clear();
+        model.extensionsUsed = extensions;   // tinygltf adds KHR_lights_punctual itself when there are lights
+    }
+};
+
+}  // namespace
+
+SceneAsset load_gltf(const std::string& path, std::string* warnings) {
+    const std::string prefix = "cannot load scene " + path + ": ";
+    const std::string ext = lower_extension(path);
+    if (ext != ".gltf" && ext != ".glb")
+        throw SceneError(prefix + "unknown extension '" + ext + "' (expected .gltf or .glb)");
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw SceneError(prefix + "no such file");
+
+    tinygltf::TinyGLTF gltf;
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok = false;
+    try {
+        ok = ext == ".glb" ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
+                           : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
+    } catch (const std::exception& e) {   // the JSON parser may throw on some inputs
+        throw SceneError(prefix + one_line(e.what()));
+    }
+    if (!ok) throw SceneError(prefix + one_line(err.empty() ? warn : err));
+
+    Loader loader{model, {}};
+    if (!warn.empty()) loader.warn(one_line(warn));
+    SceneAsset asset;
+    try {
+        asset = loader.asset();
+    } catch (const Invalid& e) {
+        throw SceneError(prefix + one_line(e.reason));
+    }
+    asset.name = fs::path(path).stem().string();
+    if (warnings) *warnings += loader.warnings;
+    return asset;
+}
+
+void save_gltf(const SceneAsset& asset, const std::string& path) {
+    const std::string prefix = "cannot save scene " + path + ": ";
+    const std::string ext = lower_extension(path);
+    if (ext != ".gltf" && ext != ".glb")
+        throw SceneError(prefix + "unknown extension '" + ext + "' (expected .gltf or .glb)");
+
+    Writer writer;
+    try {
+        writer.build(asset);
+    } catch (const Invalid& e) {
+        throw SceneError(prefix + one_line(e.reason));
+    }
+
+    // Write next to the destination, then rename: the destination is either the old file or the complete new one.
+    const fs::path target(path);
+    const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".tmp");
+    tinygltf::TinyGLTF gltf;
+    const bool binary = ext == ".glb";
+    bool ok = false;
+    try {
+        ok = gltf.WriteGltfSceneToFile(&writer.model, temp.string(), /*embedImages=*/true, /*embedBuffers=*/true,
+                                       /*prettyPrint=*/true, binary);
+    } catch (const std::exception& e) {
+        std::error_code ec;
+        fs::remove(temp, ec);
+        throw SceneError(prefix + one_line(e.what()));
+    }
+    std::error_code ec;
+    if (!ok || !fs::is_regular_file(temp, ec) || fs::file_size(temp, ec) == 0) {
+        fs::remove(temp, ec);
+        throw SceneError(prefix + "writing failed");
+    }
+    fs::rename(temp, target, ec);
+    if (ec) {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+        throw SceneError(prefix + ec.message());
+    }
+}
+
+}  // namespace rt

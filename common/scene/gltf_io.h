@@ -1,0 +1,29 @@
+// Reading and writing glTF 2.0 (.gltf and .glb) through tinygltf.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "scene.h"
+
+namespace rt {
+
+// Thrown for anything that makes a scene unusable: missing file, malformed JSON, bad accessor, unsupported content.
+// what() is one line meant for the user.
+struct SceneError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Loads the default scene of a glTF file (.gltf or .glb by extension). Reads: node hierarchy and TRS/matrix
+// transforms, TRIANGLES primitives (indexed or not; other modes are skipped with a warning), POSITION, NORMAL,
+// TEXCOORD_0, materials (baseColor factor/texture, metallic, roughness, emissive, KHR_materials_emissive_strength,
+// KHR_materials_transmission, KHR_materials_ior, KHR_materials_specular), cameras, KHR_lights_punctual and
+// animations (translation/rotation/scale channels). Warnings go to `warnings` when given.
+SceneAsset load_gltf(const std::string& path, std::string* warnings = nullptr);
+
+// Writes an asset as glTF 2.0 (.gltf with embedded buffers and images, or .glb by extension), using the same
+// extensions as the loader, so load_gltf(save_gltf(a)) reproduces a's triangles, materials, lights and cameras.
+// Writes to a temporary file and renames it, so a failure leaves nothing half-written.
+void save_gltf(const SceneAsset& asset, const std::string& path);
+
+}  // namespace rt

@@ -1,0 +1,322 @@
+// Flattening a SceneAsset into one frame: animation sampling, the node hierarchy, the triangle soup, the camera and
+// the lights in world space, and the documented defaults for assets without a camera or a light.
+#include "scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace rt {
+
+glm::mat4 Node::local_transform() const {
+    if (matrix) return *matrix;
+    // glTF 2.0, 3.5.3 "Transformations": M = T * R * S.
+    return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
+}
+
+float Animation::duration() const {
+    float end = 0.0f;
+    for (const AnimationChannel& c : channels)
+        if (!c.times.empty() && std::isfinite(c.times.back())) end = std::max(end, c.times.back());
+    return end;
+}
+
+namespace {
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+glm::quat to_quat(const glm::vec4& xyzw) { return glm::quat(xyzw.w, xyzw.x, xyzw.y, xyzw.z); }
+
+// Samples one channel at time t (clamped to the channel's key range). glTF 2.0, Appendix C "Animation Sampler
+// Interpolation Modes". Returns false for a channel whose arrays do not match (nothing is applied then).
+bool sample_channel(const AnimationChannel& c, float t, glm::vec4& out) {
+    const std::size_t n = c.times.size();
+    const bool cubic = c.interpolation == Interpolation::CubicSpline;
+    if (n == 0 || c.values.size() != (cubic ? 3 * n : n)) return false;
+    // Value of key k (CUBICSPLINE stores in-tangent, value, out-tangent per key).
+    auto value = [&](std::size_t k) { return cubic ? c.values[3 * k + 1] : c.values[k]; };
+    const bool rotation = c.path == AnimationPath::Rotation;
+
+    if (!(t > c.times.front())) { out = value(0); return true; }   // also catches NaN t
+    if (t >= c.times.back()) { out = value(n - 1); return true; }
+    // Key interval [k, k+1] with times[k] <= t < times[k+1].
+    const std::size_t k = std::size_t(std::upper_bound(c.times.begin(), c.times.end(), t) - c.times.begin()) - 1;
+    const float t0 = c.times[k], t1 = c.times[k + 1];
+    const float dt = t1 - t0;
+    if (!(dt > 0.0f)) { out = value(k); return true; }
+    const float s = (t - t0) / dt;
+
+    switch (c.interpolation) {
+    case Interpolation::Step:
+        out = value(k);
+        return true;
+    case Interpolation::Linear:
+        if (rotation) {
+            // Spherical linear interpolation along the shorter arc (glm::slerp flips the sign when needed).
+            const glm::quat q = glm::slerp(to_quat(value(k)), to_quat(value(k + 1)), s);
+            out = glm::vec4(q.x, q.y, q.z, q.w);
+        } else {
+            out = glm::mix(value(k), value(k + 1), s);
+        }
+        return true;
+    case Interpolation::CubicSpline: {
+        // Cubic Hermite spline, with b_k the out-tangent of key k and a_k+1 the in-tangent of key k+1:
+        //   p(s) = (2s^3 - 3s^2 + 1) v_k + dt (s^3 - 2s^2 + s) b_k + (-2s^3 + 3s^2) v_k+1 + dt (s^3 - s^2) a_k+1
+        const float s2 = s * s, s3 = s2 * s;
+        const glm::vec4 v0 = c.values[3 * k + 1], b0 = c.values[3 * k + 2];
+        const glm::vec4 v1 = c.values[3 * (k + 1) + 1], a1 = c.values[3 * (k + 1)];
+        out = (2 * s3 - 3 * s2 + 1) * v0 + dt * (s3 - 2 * s2 + s) * b0 + (-2 * s3 + 3 * s2) * v1 + dt * (s3 - s2) * a1;
+        if (rotation) {
+            const float len = glm::length(out);
+            if (len > 0.0f) out /= len;
+        }
+        return true;
+    }
+    }
+    return false;
+}
+
+// The nodes with every animation applied at time t. Channels on nodes that carry a matrix are ignored (glTF forbids
+// animating such nodes).
+std::vector<Node> animated_nodes(const SceneAsset& asset, float t) {
+    std::vector<Node> nodes = asset.nodes;
+    for (const Animation& a : asset.animations) {
+        for (const AnimationChannel& c : a.channels) {
+            if (c.node < 0 || std::size_t(c.node) >= nodes.size()) continue;
+            Node& node = nodes[std::size_t(c.node)];
+            if (node.matrix) continue;
+            glm::vec4 v;
+            if (!sample_channel(c, t, v)) continue;
+            switch (c.path) {
+            case AnimationPath::Translation: node.translation = glm::vec3(v); break;
+            case AnimationPath::Scale: node.scale = glm::vec3(v); break;
+            case AnimationPath::Rotation: {
+                const glm::quat q = to_quat(v);
+                const float len = glm::length(q);
+                if (len > 0.0f && std::isfinite(len)) node.rotation = q / len;
+                break;
+            }
+            }
+        }
+    }
+    return nodes;
+}
+
+// One visited node: its index and world matrix, in depth-first (pre-)order from the roots.
+struct WorldNode {
+    int index;
+    glm::mat4 world;
+};
+
+std::vector<WorldNode> walk_hierarchy(const SceneAsset& asset, const std::vector<Node>& nodes) {
+    std::vector<WorldNode> out;
+    std::vector<bool> visited(nodes.size(), false);   // guards against cycles and shared children in a bad asset
+    std::function<void(int, const glm::mat4&)> visit = [&](int i, const glm::mat4& parent) {
+        if (i < 0 || std::size_t(i) >= nodes.size() || visited[std::size_t(i)]) return;
+        visited[std::size_t(i)] = true;
+        const Node& node = nodes[std::size_t(i)];
+        const glm::mat4 world = parent * node.local_transform();
+        out.push_back({i, world});
+        for (int child : node.children) visit(child, world);
+    };
+    for (int root : asset.roots) visit(root, glm::mat4(1.0f));
+    return out;
+}
+
+// Unit vector or the fallback when v is zero or not finite.
+glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
+    const float len = glm::length(v);
+    if (!(len > 0.0f) || !std::isfinite(len)) return fallback;
+    const glm::vec3 n = v / len;
+    return finite(n) ? n : fallback;
+}
+
+// Camera frame from a node's world matrix: glTF cameras look down local -Z with +Y up (glTF 2.0, 3.10.1). Scale is
+// removed by normalizing; a shear is removed by Gram-Schmidt (forward wins, then up).
+void place_camera(Camera& cam, const glm::mat4& world) {
+    cam.position = glm::vec3(world[3]);
+    cam.forward = safe_normalize(-glm::vec3(world[2]), glm::vec3(0, 0, -1));
+    glm::vec3 up = glm::vec3(world[1]);
+    up = safe_normalize(up - glm::dot(up, cam.forward) * cam.forward, glm::vec3(0));
+    if (up == glm::vec3(0)) {   // degenerate: pick any up orthogonal to forward
+        const glm::vec3 helper = std::abs(cam.forward.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        up = glm::normalize(helper - glm::dot(helper, cam.forward) * cam.forward);
+    }
+    cam.up = up;
+    cam.right = glm::normalize(glm::cross(cam.forward, cam.up));
+}
+
+}  // namespace
+
+Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles) {
+    Scene scene;
+    scene.name = asset.name;
+    scene.background = asset.background;
+    scene.materials = asset.materials;
+    scene.textures = asset.textures;
+    for (Material& m : scene.materials)
+        if (m.base_color_texture >= int(scene.textures.size())) m.base_color_texture = -1;
+    std::size_t dropped = 0;
+    int default_material = -1;   // index of the appended glTF default material, once needed
+
+    const std::vector<Node> nodes = animated_nodes(asset, options.time);
+    const std::vector<WorldNode> order = walk_hierarchy(asset, nodes);
+
+    const Camera* chosen_camera = nullptr;
+    glm::mat4 camera_world(1.0f);
+
+    for (const WorldNode& wn : order) {
+        const Node& node = nodes[std::size_t(wn.index)];
+        const glm::mat4& world = wn.world;
+
+        if (!chosen_camera && node.camera >= 0 && std::size_t(node.camera) < asset.cameras.size() &&
+            (options.camera < 0 || node.camera == options.camera)) {
+            chosen_camera = &asset.cameras[std::size_t(node.camera)];
+            camera_world = world;
+        }
+
+        if (node.light >= 0 && std::size_t(node.light) < asset.lights.size()) {
+            Light light = asset.lights[std::size_t(node.light)];
+            light.position = glm::vec3(world[3]);
+            light.direction = safe_normalize(-glm::vec3(world[2]), glm::vec3(0, 0, -1));
+            scene.lights.push_back(light);
+        }
+
+        if (node.mesh < 0 || std::size_t(node.mesh) >= asset.meshes.size()) continue;
+        // Normals transform with the inverse transpose (a mirroring matrix thereby also flips the winding's normal,
+        // matching glTF 2.0, 3.7.2.1: a negative determinant reverses the front-face winding).
+        const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
+
+        for (const Primitive& prim : asset.meshes[std::size_t(node.mesh)].primitives) {
+            const std::size_t nv = prim.positions.size();
+            const bool has_normals = prim.normals.size() == nv;
+            const bool has_uvs = prim.uvs.size() == nv;
+            const std::size_t ni = prim.indices.empty() ? nv : prim.indices.size();
+
+            std::uint32_t material;
+            if (prim.material >= 0 && std::size_t(prim.material) < scene.materials.size()) {
+                material = std::uint32_t(prim.material);
+            } else {
+                if (default_material < 0) {
+                    default_material = int(scene.materials.size());
+                    Material m;
+                    m.name = "default";
+                    scene.materials.push_back(m);
+                }
+                material = std::uint32_t(default_material);
+            }
+
+            for (std::size_t t = 0; t + 2 < ni; t += 3) {
+                std::uint32_t idx[3];
+                bool valid = true;
+                for (int k = 0; k < 3; ++k) {
+                    const std::size_t corner = t + std::size_t(k);
+                    idx[k] = prim.indices.empty() ? std::uint32_t(corner) : prim.indices[corner];
+                    if (idx[k] >= nv) valid = false;
+                }
+                if (!valid) { ++dropped; continue; }
+
+                glm::vec3 p[3];
+                for (int k = 0; k < 3; ++k) {
+                    p[k] = glm::vec3(world * glm::vec4(prim.positions[idx[k]], 1.0f));
+                    if (!finite(p[k])) valid = false;
+                }
+                if (!valid) { ++dropped; continue; }
+
+                // Flat normal from the local-space face, carried to world space like any normal.
+                const glm::vec3& l0 = prim.positions[idx[0]];
+                const glm::vec3 face = safe_normalize(
+                    normal_matrix * glm::cross(prim.positions[idx[1]] - l0, prim.positions[idx[2]] - l0),
+                    safe_normalize(glm::cross(p[1] - p[0], p[2] - p[0]), glm::vec3(0, 0, 1)));
+
+                for (int k = 0; k < 3; ++k) {
+                    scene.positions.push_back(p[k]);
+                    scene.normals.push_back(has_normals ? safe_normalize(normal_matrix * prim.normals[idx[k]], face)
+                                                        : face);
+                    scene.uvs.push_back(has_uvs ? prim.uvs[idx[k]] : glm::vec2(0.0f));
+                    scene.bounds.add(p[k]);
+                }
+                scene.material_ids.push_back(material);
+            }
+        }
+    }
+
+    if (scene.materials.empty()) {
+        Material m;
+        m.name = "default";
+        scene.materials.push_back(m);
+    }
+
+    if (chosen_camera) {
+        scene.camera = *chosen_camera;
+        place_camera(scene.camera, camera_world);
+    } else if (options.camera >= 0) {
+        throw std::out_of_range("the scene has no camera " + std::to_string(options.camera) + " on a node (it has " +
+                                std::to_string(asset.cameras.size()) + " cameras)");
+    } else {
+        scene.camera = default_camera(scene.bounds, options.aspect);
+        scene.default_camera = true;
+    }
+
+    if (scene.lights.empty() && options.add_default_light) {
+        scene.lights.push_back(default_light(scene.bounds));
+        scene.default_light = true;
+    }
+
+    if (dropped_triangles) *dropped_triangles = dropped;
+    return scene;
+}
+
+// The auto-framed camera (docs/shading.md, "Defaults"): a perspective camera with a 45 degree vertical field of view,
+// looking at the centre of the bounds from the direction normalize(0, 0.25, 1) (in front, slightly raised), at the
+// distance where the bounding sphere (radius = half the diagonal) fits in both the vertical and the horizontal field of
+// view: d = r / sin(min(yfov, xfov) / 2). znear = r / 1000; zfar infinite. camera.aspect is left 0 (the image's);
+// `aspect` is only used for framing. Empty bounds frame a unit sphere at the origin.
+Camera default_camera(const Bounds& bounds, float aspect) {
+    if (!(aspect > 0.0f) || !std::isfinite(aspect)) aspect = 1.0f;
+    const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    float radius = 0.5f * bounds.diagonal();
+    if (!(radius > 0.0f) || !std::isfinite(radius)) radius = 1.0f;
+
+    Camera cam;
+    cam.name = "default camera";
+    cam.projection = Projection::Perspective;
+    cam.yfov = glm::radians(45.0f);
+    cam.aspect = 0.0f;
+    const float half_y = 0.5f * cam.yfov;
+    const float half_x = std::atan(std::tan(half_y) * aspect);
+    const float distance = radius / std::sin(std::min(half_y, half_x));
+    const glm::vec3 to_eye = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
+    cam.znear = 1e-3f * radius;
+    cam.zfar = 0.0f;
+    cam.position = center + distance * to_eye;
+    cam.forward = -to_eye;
+    const glm::vec3 world_up(0.0f, 1.0f, 0.0f);
+    cam.up = glm::normalize(world_up - glm::dot(world_up, cam.forward) * cam.forward);
+    cam.right = glm::normalize(glm::cross(cam.forward, cam.up));
+    return cam;
+}
+
+// The key light (docs/shading.md, "Defaults"): a white point light at center + diagonal * (0.5, 1.0, 0.8) (above, in
+// front and to the right of the bounds), with intensity pi * distance^2 so that the irradiance at the centre is pi and
+// a white Lambertian surface facing the light shades to 1 (kd / pi * I / d^2 * cos). Empty bounds use a unit diagonal
+// at the origin.
+Light default_light(const Bounds& bounds) {
+    const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    float diagonal = bounds.diagonal();
+    if (!(diagonal > 0.0f) || !std::isfinite(diagonal)) diagonal = 1.0f;
+    Light light;
+    light.name = "default light";
+    light.type = LightType::Point;
+    light.color = glm::vec3(1.0f);
+    light.position = center + diagonal * glm::vec3(0.5f, 1.0f, 0.8f);
+    const float distance = glm::length(light.position - center);
+    light.intensity = 3.14159265358979f * distance * distance;
+    light.direction = glm::normalize(center - light.position);
+    return light;
+}
+
+}  // namespace rt

@@ -1,0 +1,185 @@
+// The scene model shared by every stage.
+//
+// Two levels:
+//  - SceneAsset: what a glTF file (or a built-in scene) describes: a node hierarchy with local transforms, meshes,
+//    materials, textures, cameras, lights and animations. The glTF loader fills it, the exporter writes it, and the
+//    built-in scenes are written directly in this form so that they export to glTF for free.
+//  - Scene: one frame, flattened for rendering: every triangle in world space (three vertices each), the lights and
+//    the camera in world space. Renderers only ever see a Scene; the CPU and GPU stages read the same arrays.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace rt {
+
+// An axis-aligned box; empty until the first point is added.
+struct Bounds {
+    glm::vec3 lo{std::numeric_limits<float>::infinity()};
+    glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+    void add(const glm::vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    bool empty() const { return lo.x > hi.x; }
+    glm::vec3 center() const { return 0.5f * (lo + hi); }
+    float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }
+};
+
+// An 8-bit texture exactly as stored in the file: RGBA, sRGB-encoded for base colour. Sampling converts to linear.
+struct Texture {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba8;   // width * height * 4 bytes, row 0 = top of the image (v = 0)
+    bool nearest = false;              // glTF sampler magFilter NEAREST; else bilinear
+};
+
+// glTF metallic-roughness material plus the extensions the course reads. Defaults are glTF's defaults.
+// docs/shading.md maps these to Whitted's coefficients.
+struct Material {
+    std::string name;
+    glm::vec4 base_color{1.0f};         // linear RGBA factor
+    int base_color_texture = -1;        // index into textures, or -1
+    float metallic = 1.0f;
+    float roughness = 1.0f;
+    glm::vec3 emissive{0.0f};           // emissiveFactor * KHR_materials_emissive_strength
+    float transmission = 0.0f;          // KHR_materials_transmission
+    float ior = 1.5f;                   // KHR_materials_ior
+    float specular = 1.0f;              // KHR_materials_specular: specularFactor
+    glm::vec3 specular_color{1.0f};     // KHR_materials_specular: specularColorFactor
+};
+
+enum class LightType : int { Point = 0, Spot = 1, Directional = 2 };
+
+// KHR_lights_punctual. Intensity is candela for point/spot lights, lux for directional lights.
+struct Light {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float range = 0.0f;                 // 0 = infinite
+    float inner_cone = 0.0f;            // spot only, radians
+    float outer_cone = 0.7853982f;      // spot only, radians (glTF default pi/4)
+    // World space (filled by flatten; in a SceneAsset these are taken from the node the light hangs on).
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the way the light points (spot, directional)
+};
+
+enum class Projection : int { Perspective = 0, Orthographic = 1 };
+
+struct Camera {
+    std::string name;
+    Projection projection = Projection::Perspective;
+    float yfov = 0.6911f;               // radians (perspective)
+    float aspect = 0.0f;                // 0 = take the image's aspect ratio
+    float xmag = 1.0f, ymag = 1.0f;     // orthographic half extents
+    float znear = 0.01f;
+    float zfar = 0.0f;                  // 0 = infinite
+    // World space (filled by flatten): eye position and an orthonormal frame. glTF cameras look down their local -Z
+    // with +Y up, so forward = node's -Z, up = node's +Y, right = node's +X.
+    glm::vec3 position{0.0f};
+    glm::vec3 right{1.0f, 0.0f, 0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    glm::vec3 forward{0.0f, 0.0f, -1.0f};
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// SceneAsset: the glTF-shaped description.
+
+struct Primitive {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;     // empty = computed (flat, per face) when flattened
+    std::vector<glm::vec2> uvs;         // empty = no texture coordinates
+    std::vector<std::uint32_t> indices; // empty = non-indexed (every three positions form a triangle)
+    int material = -1;                  // -1 = the glTF default material
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+};
+
+struct Node {
+    std::string name;
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};   // w, x, y, z
+    glm::vec3 scale{1.0f};
+    std::optional<glm::mat4> matrix;              // when set, replaces T*R*S (glTF "matrix"; not animatable)
+    int mesh = -1, camera = -1, light = -1;
+    std::vector<int> children;
+    glm::mat4 local_transform() const;
+};
+
+enum class AnimationPath : int { Translation, Rotation, Scale };
+enum class Interpolation : int { Step, Linear, CubicSpline };
+
+struct AnimationChannel {
+    int node = -1;
+    AnimationPath path = AnimationPath::Translation;
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<float> times;
+    // One value per key (xyz or quaternion xyzw in a vec4); CUBICSPLINE stores in-tangent, value, out-tangent per key.
+    std::vector<glm::vec4> values;
+};
+
+struct Animation {
+    std::string name;
+    std::vector<AnimationChannel> channels;
+    float duration() const;
+};
+
+struct SceneAsset {
+    std::string name;
+    std::vector<Mesh> meshes;
+    std::vector<Node> nodes;
+    std::vector<int> roots;             // the nodes of the displayed glTF scene
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Camera> cameras;        // projection parameters; placement comes from the node
+    std::vector<Light> lights;          // colour/intensity/cone; placement comes from the node
+    std::vector<Animation> animations;
+    glm::vec3 background{0.0f};         // linear radiance of rays that leave the scene
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Scene: one flattened frame.
+
+struct Scene {
+    std::string name;
+    // Triangle soup in world space: triangle i uses entries 3i, 3i+1, 3i+2.
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;     // shading normals, unit length
+    std::vector<glm::vec2> uvs;         // (0,0) where the mesh has none
+    std::vector<std::uint32_t> material_ids;   // one per triangle
+    std::vector<Material> materials;    // never empty: a default material is appended when needed
+    std::vector<Texture> textures;
+    std::vector<Light> lights;
+    Camera camera;
+    glm::vec3 background{0.0f};
+    Bounds bounds;
+    // Documented defaults (docs/shading.md) applied because the asset had none; reported in the stats.
+    bool default_camera = false;
+    bool default_light = false;
+    std::size_t triangle_count() const { return material_ids.size(); }
+};
+
+struct FlattenOptions {
+    float time = 0.0f;            // seconds, for animations (all animations play together, clamped to their ends)
+    int camera = -1;              // glTF camera index; -1 = first camera in node order, else auto-framed
+    float aspect = 4.0f / 3.0f;   // image width / height, used for auto-framing
+    bool add_default_light = true;
+};
+
+// Evaluates the asset at a time and bakes everything into world space. Triangles whose vertices are not finite are
+// dropped (counted in dropped_triangles when given); degenerate triangles are kept (the intersectors must cope).
+Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles = nullptr);
+
+// The auto-framed camera and key light used when an asset has none (docs/shading.md, "Defaults").
+Camera default_camera(const Bounds& bounds, float aspect);
+Light default_light(const Bounds& bounds);
+
+}  // namespace rt

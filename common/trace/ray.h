@@ -1,0 +1,50 @@
+// Rays and hits, templated on the scalar type so stage 01 can run in float or double (--precision).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include <glm/glm.hpp>
+
+namespace rt {
+
+template <class T> using Vec3 = glm::vec<3, T, glm::defaultp>;
+template <class T> using Vec2 = glm::vec<2, T, glm::defaultp>;
+
+template <class T>
+struct Ray {
+    Vec3<T> origin{0};
+    Vec3<T> direction{0, 0, -1};   // not necessarily unit length for intersection; the tracers keep it unit
+    T tmax = std::numeric_limits<T>::infinity();
+};
+
+template <class T>
+struct Hit {
+    T t = std::numeric_limits<T>::infinity();
+    T u = 0, v = 0;                // barycentrics of vertices 1 and 2: P = (1-u-v) A + u B + v C
+    std::int32_t triangle = -1;    // -1 = miss
+    bool valid() const { return triangle >= 0; }
+};
+
+// The kinds of rays a Whitted tracer casts, counted separately in the stats.
+enum class RayKind : int { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
+
+// Counters every stage reports: rays of each kind and ray/triangle intersection tests.
+struct RayCounters {
+    std::uint64_t rays[4] = {0, 0, 0, 0};
+    std::uint64_t intersection_tests = 0;
+    void add(const RayCounters& o) {
+        for (int i = 0; i < 4; ++i) rays[i] += o.rays[i];
+        intersection_tests += o.intersection_tests;
+    }
+    std::uint64_t total_rays() const { return rays[0] + rays[1] + rays[2] + rays[3]; }
+};
+
+// True when every component is finite (no NaN, no Inf).
+template <class V> bool all_finite(const V& v) {
+    for (int i = 0; i < V::length(); ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
+}  // namespace rt

@@ -1,0 +1,113 @@
+#include "shading.h"
+
+#include <array>
+
+namespace rt {
+
+namespace {
+
+// sRGB -> linear for all 256 byte values, computed once.
+const std::array<float, 256>& srgb_table() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) t[std::size_t(i)] = srgb_to_linear(float(i) / 255.0f);
+        return t;
+    }();
+    return table;
+}
+
+glm::vec4 texel(const Texture& tex, int x, int y) {
+    // REPEAT wrapping for any integer, negative included.
+    x = ((x % tex.width) + tex.width) % tex.width;
+    y = ((y % tex.height) + tex.height) % tex.height;
+    const std::uint8_t* p = &tex.rgba8[(std::size_t(y) * std::size_t(tex.width) + std::size_t(x)) * 4];
+    const auto& lut = srgb_table();
+    return {lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) / 255.0f};
+}
+
+}  // namespace
+
+glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv) {
+    if (tex.width <= 0 || tex.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return glm::vec4(1.0f);
+    // Keep only the fractional part first so huge UVs do not lose the texel position to float rounding.
+    uv -= glm::floor(uv);
+    const float fx = uv.x * float(tex.width), fy = uv.y * float(tex.height);
+    if (tex.nearest) return texel(tex, int(fx), int(fy));
+    // Bilinear between the four texel centres around (fx, fy).
+    const float sx = fx - 0.5f, sy = fy - 0.5f;
+    const float x0f = std::floor(sx), y0f = std::floor(sy);
+    const float ax = sx - x0f, ay = sy - y0f;
+    const int x0 = int(x0f), y0 = int(y0f);
+    const glm::vec4 top = glm::mix(texel(tex, x0, y0), texel(tex, x0 + 1, y0), ax);
+    const glm::vec4 bottom = glm::mix(texel(tex, x0, y0 + 1), texel(tex, x0 + 1, y0 + 1), ax);
+    return glm::mix(top, bottom, ay);
+}
+
+SurfaceCoefficients surface_coefficients(const Material& m, const glm::vec4& tex) {
+    SurfaceCoefficients s;
+    const float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+    const float roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+    s.base = glm::vec3(m.base_color) * glm::vec3(tex);
+    s.dielectric = 1.0f - metallic;
+    s.transmission = std::clamp(m.transmission, 0.0f, 1.0f);
+    s.smoothness = (1.0f - roughness) * (1.0f - roughness);
+    s.ior = m.ior > 0.0f ? m.ior : 1.5f;
+    // Dielectric reflectance at normal incidence, scaled by KHR_materials_specular.
+    const float r0 = (s.ior - 1.0f) / (s.ior + 1.0f);
+    s.f0_dielectric = glm::min(glm::vec3(1.0f), r0 * r0 * m.specular * m.specular_color);
+    s.diffuse = s.base * s.dielectric * (1.0f - s.transmission);
+    s.mirror = s.base * metallic * s.smoothness;
+    // Highlight: Blinn-Phong lobe whose exponent follows roughness (alpha = roughness^2, exponent 2/alpha^2 - 2);
+    // only smooth surfaces get one, weighted by their reflectance at normal incidence.
+    const float alpha = std::max(roughness * roughness, 0.1f);   // floor keeps mirror highlights a few pixels wide
+    s.shininess = 2.0f / (alpha * alpha) - 2.0f;
+    s.specular = s.smoothness * (metallic * s.base + s.dielectric * s.f0_dielectric);
+    s.emissive = m.emissive;
+    return s;
+}
+
+glm::vec3 light_incidence(const Light& light, const glm::vec3& p, const glm::vec3& n, glm::vec3& to_light,
+                          float& distance) {
+    float scale = light.intensity;
+    if (light.type == LightType::Directional) {
+        to_light = -glm::normalize(light.direction);
+        distance = std::numeric_limits<float>::infinity();
+    } else {
+        const glm::vec3 d = light.position - p;
+        const float d2 = glm::dot(d, d);
+        if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+        distance = std::sqrt(d2);
+        to_light = d / distance;
+        scale /= d2;                                       // inverse-square law
+        if (light.range > 0.0f) {
+            // glTF's recommended smooth window: clamp(1 - (d/range)^4, 0, 1)^2.
+            const float r = distance / light.range;
+            const float w = std::clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
+            scale *= w * w;
+        }
+        if (light.type == LightType::Spot) {
+            // KHR_lights_punctual: linear ramp in cosine between the outer and inner cone, squared.
+            const float cos_outer = std::cos(light.outer_cone), cos_inner = std::cos(light.inner_cone);
+            const float cd = glm::dot(glm::normalize(light.direction), -to_light);
+            const float t = std::clamp((cd - cos_outer) / std::max(cos_inner - cos_outer, 1e-4f), 0.0f, 1.0f);
+            scale *= t * t;
+        }
+    }
+    const float cos_theta = glm::dot(n, to_light);
+    if (!(cos_theta > 0.0f) || !(scale > 0.0f)) return glm::vec3(0.0f);
+    return light.color * (scale * cos_theta);
+}
+
+glm::vec3 shade_light(const SurfaceCoefficients& s, const glm::vec3& incidence, const glm::vec3& n,
+                      const glm::vec3& to_light, const glm::vec3& to_eye) {
+    glm::vec3 brdf = s.diffuse / kPi;
+    if (s.smoothness > 0.0f) {
+        const glm::vec3 h = glm::normalize(to_light + to_eye);
+        const float nh = std::max(glm::dot(n, h), 0.0f);
+        // Normalised Blinn-Phong: (e + 8) / (8 pi) keeps the lobe's energy roughly constant as it sharpens.
+        brdf += s.specular * ((s.shininess + 8.0f) / (8.0f * kPi)) * std::pow(nh, s.shininess);
+    }
+    return brdf * incidence;
+}
+
+}  // namespace rt

@@ -1,0 +1,129 @@
+// The shading model every stage implements (docs/shading.md is the contract; common/shaders/shading.glsl is the
+// GLSL twin, kept equal by tests/unit/test_glsl_twins.cpp). Everything here is linear RGB.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "../scene/scene.h"
+#include "ray.h"
+
+namespace rt {
+
+enum class FresnelMode : int { Schlick = 0, Exact = 1 };
+
+// Constants of the contract (docs/shading.md).
+constexpr float kAmbient = 0.03f;          // ambient light, as a fraction of the diffuse colour
+constexpr float kDefaultCutoff = 1e-3f;    // a path stops when its weight falls below this in every channel
+constexpr float kPi = 3.14159265358979f;
+
+// Mirror reflection of d about n (n unit length).
+template <class T> Vec3<T> reflect_dir(const Vec3<T>& d, const Vec3<T>& n) { return d - T(2) * glm::dot(d, n) * n; }
+
+// Snell's law. d: unit incident direction; n: unit normal on the incident side (dot(d, n) < 0); eta = n_i / n_t.
+// Returns false under total internal reflection.
+template <class T>
+bool refract_dir(const Vec3<T>& d, const Vec3<T>& n, T eta, Vec3<T>& out) {
+    const T cos_i = -glm::dot(d, n);
+    const T sin2_t = eta * eta * std::max(T(0), T(1) - cos_i * cos_i);
+    if (sin2_t >= T(1)) return false;
+    const T cos_t = std::sqrt(T(1) - sin2_t);
+    out = glm::normalize(eta * d + (eta * cos_i - cos_t) * n);
+    return true;
+}
+
+// Exact Fresnel reflectance of an unpolarised wave at a dielectric boundary (average of the s and p terms).
+// cos_i: cosine of the incident angle (>= 0); eta = n_i / n_t. Returns 1 under total internal reflection.
+template <class T>
+T fresnel_exact(T cos_i, T eta) {
+    cos_i = std::clamp(cos_i, T(0), T(1));
+    const T sin2_t = eta * eta * (T(1) - cos_i * cos_i);
+    if (sin2_t >= T(1)) return T(1);
+    const T cos_t = std::sqrt(T(1) - sin2_t);
+    const T rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const T rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return T(0.5) * (rs * rs + rp * rp);
+}
+
+// Schlick's approximation (1994). Uses the cosine on the denser side, so it also gives 1 under total internal
+// reflection: when leaving the denser medium (eta > 1) the transmitted angle's cosine is used.
+template <class T>
+T fresnel_schlick(T cos_i, T eta) {
+    cos_i = std::clamp(cos_i, T(0), T(1));
+    T r0 = (eta - T(1)) / (eta + T(1));
+    r0 *= r0;
+    if (r0 == T(0)) return T(0);   // matched indices: no interface, nothing reflects (Schlick alone gives (1-c)^5)
+    T c = cos_i;
+    if (eta > T(1)) {
+        const T sin2_t = eta * eta * (T(1) - cos_i * cos_i);
+        if (sin2_t >= T(1)) return T(1);
+        c = std::sqrt(T(1) - sin2_t);
+    }
+    const T m = T(1) - c;
+    return r0 + (T(1) - r0) * (m * m) * (m * m) * m;
+}
+
+template <class T>
+T fresnel(FresnelMode mode, T cos_i, T eta) {
+    return mode == FresnelMode::Exact ? fresnel_exact(cos_i, eta) : fresnel_schlick(cos_i, eta);
+}
+
+// sRGB transfer functions (IEC 61966-2-1).
+inline float srgb_to_linear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+inline float linear_to_srgb(float c) {
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+// Texture lookup with REPEAT wrapping; nearest or bilinear per the texture. Returns linear RGBA (sRGB decoded).
+glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv);
+
+// Whitted coefficients of a surface point (docs/shading.md, "From glTF materials to Whitted coefficients").
+struct SurfaceCoefficients {
+    glm::vec3 diffuse{0};      // kd: Lambertian albedo
+    glm::vec3 specular{0};     // ks: weight of the Blinn-Phong highlight
+    float shininess = 0;       // Blinn-Phong exponent
+    glm::vec3 mirror{0};       // kr before Fresnel: metallic part (already coloured) ...
+    float smoothness = 0;      // s = (1 - roughness)^2: how mirror-like
+    float dielectric = 0;      // (1 - metallic)
+    float transmission = 0;    // fraction of the dielectric part that transmits
+    glm::vec3 base{1};         // base colour (texture applied)
+    glm::vec3 f0_dielectric{0.04f};
+    glm::vec3 emissive{0};
+    float ior = 1.5f;
+};
+
+SurfaceCoefficients surface_coefficients(const Material& m, const glm::vec4& texel);
+
+// Irradiance-like factor of one light at point p with unit normal n: returns the light's radiance scale times the
+// cosine term and gives the unit direction to the light and the distance (infinite for directional lights).
+// Zero when p is outside a spot cone, beyond range, or behind the surface.
+glm::vec3 light_incidence(const Light& light, const glm::vec3& p, const glm::vec3& n, glm::vec3& to_light,
+                          float& distance);
+
+// Direct lighting of one light (not shadowed): Lambert plus Blinn-Phong highlight.
+glm::vec3 shade_light(const SurfaceCoefficients& s, const glm::vec3& incidence, const glm::vec3& n,
+                      const glm::vec3& to_light, const glm::vec3& to_eye);
+
+// Primary ray through image position (x, y) in pixels (pixel centres at +0.5), y down.
+template <class T>
+Ray<T> camera_ray(const Camera& cam, int width, int height, T x, T y) {
+    const T aspect = cam.aspect > 0 ? T(cam.aspect) : T(width) / T(height);
+    const T ndc_x = T(2) * x / T(width) - T(1);
+    const T ndc_y = T(1) - T(2) * y / T(height);
+    const Vec3<T> right(cam.right), up(cam.up), forward(cam.forward), eye(cam.position);
+    Ray<T> ray;
+    if (cam.projection == Projection::Orthographic) {
+        ray.origin = eye + right * (ndc_x * T(cam.xmag)) + up * (ndc_y * T(cam.ymag));
+        ray.direction = forward;
+    } else {
+        const T h = std::tan(T(cam.yfov) * T(0.5));
+        ray.origin = eye;
+        ray.direction = glm::normalize(right * (ndc_x * h * aspect) + up * (ndc_y * h) + forward);
+    }
+    return ray;
+}
+
+}  // namespace rt

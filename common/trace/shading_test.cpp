@@ -1,0 +1,191 @@
+// Shading functions of docs/shading.md: Fresnel, Snell, the material mapping and light falloff.
+#include <gtest/gtest.h>
+
+#include "shading.h"
+#include "whitted.h"
+
+namespace rt {
+namespace {
+
+TEST(Fresnel, NormalIncidenceGlassIsFourPercent) {
+    // ((1.5 - 1) / (1.5 + 1))^2 = 0.04, entering glass from air (eta = 1/1.5) and leaving it (eta = 1.5).
+    EXPECT_NEAR(fresnel_exact(1.0f, 1.0f / 1.5f), 0.04f, 1e-6f);
+    EXPECT_NEAR(fresnel_exact(1.0f, 1.5f), 0.04f, 1e-6f);
+    EXPECT_NEAR(fresnel_schlick(1.0f, 1.0f / 1.5f), 0.04f, 1e-6f);
+    EXPECT_NEAR(fresnel_exact(1.0, 1.0 / 1.5), 0.04, 1e-12);
+}
+
+TEST(Fresnel, GrazingIncidenceReflectsEverything) {
+    EXPECT_NEAR(fresnel_exact(0.0f, 1.0f / 1.5f), 1.0f, 1e-6f);
+    EXPECT_NEAR(fresnel_schlick(0.0f, 1.0f / 1.5f), 1.0f, 1e-6f);
+}
+
+TEST(Fresnel, TotalInternalReflectionIsOne) {
+    // Leaving glass (eta = 1.5) beyond the critical angle asin(1/1.5) = 41.8 degrees.
+    const float cos_i = std::cos(glm::radians(60.0f));
+    EXPECT_EQ(fresnel_exact(cos_i, 1.5f), 1.0f);
+    EXPECT_EQ(fresnel_schlick(cos_i, 1.5f), 1.0f);
+    glm::vec3 out;
+    const glm::vec3 d = glm::normalize(glm::vec3(std::sin(glm::radians(60.0f)), -cos_i, 0.0f));
+    EXPECT_FALSE(refract_dir(d, glm::vec3(0, 1, 0), 1.5f, out));
+}
+
+TEST(Fresnel, EtaOneReflectsNothing) {
+    for (float c : {0.01f, 0.3f, 0.7f, 1.0f}) {
+        EXPECT_NEAR(fresnel_exact(c, 1.0f), 0.0f, 1e-6f) << c;
+        EXPECT_NEAR(fresnel_schlick(c, 1.0f), 0.0f, 1e-6f) << c;
+    }
+}
+
+TEST(Fresnel, SchlickStaysCloseToExact) {
+    for (float eta : {1.0f / 1.5f, 1.0f / 1.33f, 1.33f, 1.5f})
+        for (int i = 0; i <= 100; ++i) {
+            const float c = i / 100.0f;
+            EXPECT_NEAR(fresnel_schlick(c, eta), fresnel_exact(c, eta), 0.08f) << "eta " << eta << " cos " << c;
+        }
+}
+
+TEST(Refraction, EnteringAndLeavingASlabRestoresTheDirection) {
+    const glm::vec3 d = glm::normalize(glm::vec3(0.6f, -0.8f, 0.0f));
+    glm::vec3 inside, outside;
+    ASSERT_TRUE(refract_dir(d, glm::vec3(0, 1, 0), 1.0f / 1.5f, inside));
+    // Snell: sin_t = sin_i / 1.5.
+    EXPECT_NEAR(inside.x, 0.6f / 1.5f, 1e-6f);
+    EXPECT_LT(inside.y, 0.0f);
+    ASSERT_TRUE(refract_dir(inside, glm::vec3(0, 1, 0), 1.5f, outside));
+    EXPECT_NEAR(outside.x, d.x, 1e-6f);
+    EXPECT_NEAR(outside.y, d.y, 1e-6f);
+}
+
+TEST(Refraction, NormalIncidenceGoesStraightThrough) {
+    glm::vec3 out;
+    ASSERT_TRUE(refract_dir(glm::vec3(0, 0, -1), glm::vec3(0, 0, 1), 1.0f / 1.5f, out));
+    EXPECT_NEAR(out.z, -1.0f, 1e-7f);
+}
+
+TEST(Materials, DefaultGltfMaterialIsAMatteMetalWithoutMirror) {
+    const Material m;   // glTF defaults: metallic 1, roughness 1
+    const SurfaceCoefficients s = surface_coefficients(m, glm::vec4(1.0f));
+    EXPECT_EQ(s.smoothness, 0.0f);
+    EXPECT_EQ(s.diffuse, glm::vec3(0.0f));
+}
+
+TEST(Materials, GlassSplitsIntoFresnelReflectionAndRefraction) {
+    Material glass;
+    glass.metallic = 0.0f;
+    glass.roughness = 0.0f;
+    glass.transmission = 1.0f;
+    const SurfaceCoefficients s = surface_coefficients(glass, glm::vec4(1.0f));
+    const float f = fresnel_exact(1.0f, 1.0f / 1.5f);
+    using W = Whitted<float, int>;
+    const auto k = W::coefficients(s, true, 1.0f, f);
+    EXPECT_NEAR(k.reflection.x, 0.04f, 1e-6f);
+    EXPECT_NEAR(k.refraction.x, 0.96f, 1e-6f);
+    EXPECT_EQ(s.diffuse, glm::vec3(0.0f));
+}
+
+TEST(Materials, SpecularExtensionScalesDielectricReflectance) {
+    Material m;
+    m.metallic = 0.0f;
+    m.roughness = 0.0f;
+    m.specular = 0.5f;
+    const SurfaceCoefficients s = surface_coefficients(m, glm::vec4(1.0f));
+    EXPECT_NEAR(s.f0_dielectric.x, 0.02f, 1e-6f);
+}
+
+TEST(Lights, PointLightFollowsTheInverseSquareLaw) {
+    Light l;
+    l.intensity = 4.0f;
+    l.position = glm::vec3(0, 2, 0);
+    glm::vec3 to_light;
+    float dist;
+    const glm::vec3 e = light_incidence(l, glm::vec3(0), glm::vec3(0, 1, 0), to_light, dist);
+    EXPECT_FLOAT_EQ(dist, 2.0f);
+    EXPECT_FLOAT_EQ(e.x, 1.0f);   // 4 cd / (2 m)^2 at normal incidence
+    EXPECT_EQ(to_light, glm::vec3(0, 1, 0));
+}
+
+TEST(Lights, SurfaceFacingAwayGetsNothing) {
+    Light l;
+    l.position = glm::vec3(0, -1, 0);
+    glm::vec3 to_light;
+    float dist;
+    EXPECT_EQ(light_incidence(l, glm::vec3(0), glm::vec3(0, 1, 0), to_light, dist), glm::vec3(0.0f));
+}
+
+TEST(Lights, SpotConeCutsOffOutside) {
+    Light l;
+    l.type = LightType::Spot;
+    l.position = glm::vec3(0, 1, 0);
+    l.direction = glm::vec3(0, -1, 0);
+    l.inner_cone = 0.1f;
+    l.outer_cone = 0.2f;
+    glm::vec3 to_light;
+    float dist;
+    EXPECT_GT(light_incidence(l, glm::vec3(0), glm::vec3(0, 1, 0), to_light, dist).x, 0.0f);
+    EXPECT_EQ(light_incidence(l, glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), to_light, dist), glm::vec3(0.0f));
+}
+
+TEST(Lights, DirectionalLightIsIrradianceTimesCosine) {
+    Light l;
+    l.type = LightType::Directional;
+    l.intensity = 2.0f;
+    l.direction = glm::vec3(0, -1, 0);
+    glm::vec3 to_light;
+    float dist;
+    const glm::vec3 e = light_incidence(l, glm::vec3(5, 0, 5), glm::vec3(0, 1, 0), to_light, dist);
+    EXPECT_FLOAT_EQ(e.x, 2.0f);
+    EXPECT_TRUE(std::isinf(dist));
+}
+
+TEST(Textures, NearestRepeatsAndDecodesSrgb) {
+    Texture t;
+    t.width = 2;
+    t.height = 1;
+    t.nearest = true;
+    t.rgba8 = {255, 255, 255, 255, 0, 0, 0, 255};
+    EXPECT_FLOAT_EQ(sample_texture(t, {0.25f, 0.5f}).x, 1.0f);
+    EXPECT_FLOAT_EQ(sample_texture(t, {0.75f, 0.5f}).x, 0.0f);
+    EXPECT_FLOAT_EQ(sample_texture(t, {-0.75f, 0.5f}).x, 1.0f);   // REPEAT for negative coordinates
+    EXPECT_FLOAT_EQ(sample_texture(t, {7.25f, 0.5f}).x, 1.0f);
+}
+
+TEST(Textures, BilinearBlendsNeighbours) {
+    Texture t;
+    t.width = 2;
+    t.height = 1;
+    t.rgba8 = {255, 255, 255, 255, 0, 0, 0, 255};
+    EXPECT_NEAR(sample_texture(t, {0.5f, 0.5f}).x, 0.5f, 1e-6f);   // halfway between the two texel centres
+}
+
+TEST(Srgb, RoundTripsEveryByte) {
+    for (int i = 0; i < 256; ++i)
+        EXPECT_EQ(std::lround(linear_to_srgb(srgb_to_linear(i / 255.0f)) * 255.0f), i);
+}
+
+TEST(Camera, CentreRayLooksForwardAndCornersSpanTheFieldOfView) {
+    Camera cam;
+    cam.yfov = glm::radians(90.0f);
+    const Ray<float> centre = camera_ray<float>(cam, 200, 100, 100.0f, 50.0f);
+    EXPECT_NEAR(centre.direction.z, -1.0f, 1e-6f);
+    // Top edge at 45 degrees up; left edge at atan(aspect * tan(45)) = atan(2).
+    const Ray<float> top = camera_ray<float>(cam, 200, 100, 100.0f, 0.0f);
+    EXPECT_NEAR(top.direction.y, -top.direction.z, 1e-6f);
+    const Ray<float> left = camera_ray<float>(cam, 200, 100, 0.0f, 50.0f);
+    EXPECT_NEAR(left.direction.x / left.direction.z, 2.0f, 1e-5f);
+}
+
+TEST(Camera, OrthographicRaysAreParallel) {
+    Camera cam;
+    cam.projection = Projection::Orthographic;
+    cam.xmag = 2.0f;
+    cam.ymag = 1.0f;
+    const Ray<float> a = camera_ray<float>(cam, 10, 10, 0.0f, 0.0f);
+    const Ray<float> b = camera_ray<float>(cam, 10, 10, 10.0f, 10.0f);
+    EXPECT_EQ(a.direction, b.direction);
+    EXPECT_NEAR(a.origin.x, -2.0f, 1e-6f);
+    EXPECT_NEAR(b.origin.y, -1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace rt

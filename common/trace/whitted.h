@@ -1,0 +1,174 @@
+// Whitted's recursive ray tracing (Whitted 1980) for the CPU, written once and used by stage 01 and by every test
+// and script that needs the reference image. It is generic over the scalar type T (float or double geometry) and
+// over the Tracer that finds hits, which is what each CPU technique provides:
+//
+//   struct Tracer {
+//       bool closest(const Ray<T>& ray, Hit<T>& hit, RayCounters& counters) const;   // nearest hit, t < ray.tmax
+//       bool occluded(const Ray<T>& ray, RayCounters& counters) const;              // any hit with t < ray.tmax
+//   };
+//
+// docs/shading.md states the model; the GPU stages implement the same sum in passes (common/shaders/shading.glsl).
+#pragma once
+
+#include <algorithm>
+
+#include "../scene/effects.h"
+#include "../scene/scene.h"
+#include "intersect.h"
+#include "offset.h"
+#include "shading.h"
+
+namespace rt {
+
+struct WhittedSettings {
+    int max_depth = 5;
+    float cutoff = kDefaultCutoff;
+    FresnelMode fresnel = FresnelMode::Exact;
+    OffsetMethod offset = OffsetMethod::Robust;
+    float epsilon = kDefaultEpsilon;
+    Effects effects;
+};
+
+inline float max_component(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+// What a primary hit needs for shading, computed in T and handed to the shading code in float.
+template <class T>
+struct SurfacePoint {
+    Vec3<T> position;          // interpolated from the vertices (more accurate than origin + t * direction)
+    Vec3<T> geometric_normal;  // unit, facing the incoming ray
+    glm::vec3 shading_normal;  // unit, on the same side as geometric_normal
+    glm::vec2 uv;
+    bool front_face;           // the ray arrived from the side the triangle's winding calls outside
+    std::uint32_t material;
+};
+
+template <class T>
+SurfacePoint<T> surface_point(const Scene& scene, const Ray<T>& ray, const Hit<T>& hit) {
+    const std::size_t i = std::size_t(hit.triangle) * 3;
+    const Vec3<T> a(scene.positions[i]), b(scene.positions[i + 1]), c(scene.positions[i + 2]);
+    const T w = T(1) - hit.u - hit.v;
+    SurfacePoint<T> s;
+    s.position = w * a + hit.u * b + hit.v * c;
+    Vec3<T> ng = glm::cross(b - a, c - a);
+    const T len = glm::length(ng);
+    ng = len > T(0) ? ng / len : -Vec3<T>(ray.direction);   // a degenerate triangle only gets hit through rounding
+    s.front_face = glm::dot(ng, ray.direction) < T(0);
+    s.geometric_normal = s.front_face ? ng : -ng;
+    const float wf = float(w), uf = float(hit.u), vf = float(hit.v);
+    glm::vec3 ns = wf * scene.normals[i] + uf * scene.normals[i + 1] + vf * scene.normals[i + 2];
+    const float ns_len = glm::length(ns);
+    const glm::vec3 ngf(s.geometric_normal);
+    ns = (ns_len > 0.0f && std::isfinite(ns_len)) ? ns / ns_len : ngf;
+    // Shading normals interpolated across a curved mesh can face away from the viewer near silhouettes: turn them to
+    // the geometric side so lighting and reflection stay on the visible side of the surface.
+    s.shading_normal = glm::dot(ns, ngf) < 0.0f ? -ns : ns;
+    s.uv = wf * scene.uvs[i] + uf * scene.uvs[i + 1] + vf * scene.uvs[i + 2];
+    s.material = scene.material_ids[std::size_t(hit.triangle)];
+    return s;
+}
+
+template <class T, class Tracer>
+class Whitted {
+public:
+    Whitted(const Scene& scene, const Tracer& tracer, const WhittedSettings& settings)
+        : scene_(scene), tracer_(tracer), settings_(settings) {}
+
+    // Radiance arriving along `ray`; `weight` is the product of the coefficients on the path so far (the path stops
+    // spawning rays once a child's weight falls below the cut-off).
+    glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& weight, RayCounters& counters) const {
+        Hit<T> hit;
+        if (!tracer_.closest(ray, hit, counters)) return scene_.background;
+        const SurfacePoint<T> sp = surface_point(scene_, ray, hit);
+        const Material& material = scene_.materials[sp.material];
+        glm::vec4 tex(1.0f);
+        if (settings_.effects.textures && material.base_color_texture >= 0)
+            tex = sample_texture(scene_.textures[std::size_t(material.base_color_texture)], sp.uv);
+        const SurfaceCoefficients s = surface_coefficients(material, tex);
+        const glm::vec3 d = glm::vec3(ray.direction);
+        const glm::vec3 n = sp.shading_normal;
+
+        // Local illumination: emission, ambient, and each light not blocked by a shadow ray.
+        glm::vec3 color = s.emissive + kAmbient * s.diffuse;
+        for (const Light& light : scene_.lights) {
+            glm::vec3 to_light;
+            float distance;
+            const glm::vec3 incidence = light_incidence(light, glm::vec3(sp.position), n, to_light, distance);
+            if (incidence == glm::vec3(0.0f)) continue;
+            if (settings_.effects.shadows) {
+                Ray<T> shadow;
+                shadow.direction = Vec3<T>(to_light);
+                shadow.origin = spawn_origin(sp, shadow.direction);
+                shadow.tmax = light.type == LightType::Directional
+                                  ? std::numeric_limits<T>::infinity()
+                                  : glm::length(Vec3<T>(light.position) - shadow.origin);
+                counters.rays[int(RayKind::Shadow)]++;
+                if (tracer_.occluded(shadow, counters)) continue;
+            }
+            color += shade_light(s, incidence, n, to_light, -d);
+        }
+        if (depth >= settings_.max_depth) return color;
+
+        // Reflection and refraction (docs/shading.md, "Secondary rays"). eta = n_incident / n_transmitted.
+        const float cos_i = std::clamp(-glm::dot(d, n), 0.0f, 1.0f);
+        const float eta = sp.front_face ? 1.0f / s.ior : s.ior;
+        const float f = fresnel(settings_.fresnel, cos_i, eta);
+        const ReflectRefract k = coefficients(s, sp.front_face, cos_i, f);
+
+        if (settings_.effects.reflections && max_component(weight * k.reflection) > settings_.cutoff) {
+            Ray<T> r;
+            glm::vec3 dir = reflect_dir(d, n);
+            // A shading normal far from the geometric one can send the reflection under the surface: use the
+            // geometric normal then.
+            if (glm::dot(dir, glm::vec3(sp.geometric_normal)) <= 0.0f) dir = reflect_dir(d, glm::vec3(sp.geometric_normal));
+            r.direction = glm::normalize(Vec3<T>(dir));
+            r.origin = spawn_origin(sp, r.direction);
+            counters.rays[int(RayKind::Reflection)]++;
+            color += k.reflection * radiance(r, depth + 1, weight * k.reflection, counters);
+        }
+        if (settings_.effects.refractions && max_component(weight * k.refraction) > settings_.cutoff) {
+            glm::vec3 dir;
+            if (refract_dir(d, n, eta, dir)) {
+                Ray<T> r;
+                r.direction = glm::normalize(Vec3<T>(dir));
+                r.origin = spawn_origin(sp, r.direction);
+                counters.rays[int(RayKind::Refraction)]++;
+                color += k.refraction * radiance(r, depth + 1, weight * k.refraction, counters);
+            }
+        }
+        return color;
+    }
+
+    // Weights of the reflected and refracted rays (docs/shading.md): metals reflect their base colour; the
+    // dielectric part reflects F and, where it transmits, refracts (1 - F), tinted by the base colour on entry.
+    struct ReflectRefract {
+        glm::vec3 reflection{0.0f};
+        glm::vec3 refraction{0.0f};
+    };
+    static ReflectRefract coefficients(const SurfaceCoefficients& s, bool front_face, float cos_i, float f) {
+        ReflectRefract k;
+        // Metals: Schlick with the base colour as F0 (conductors have no single eta).
+        const float m = 1.0f - cos_i;
+        const glm::vec3 f_metal = s.base + (glm::vec3(1.0f) - s.base) * (m * m * m * m * m);
+        const glm::vec3 metal = (1.0f - s.dielectric) * s.smoothness * f_metal;
+        // Dielectrics: the Fresnel term for this ior, scaled by KHR_materials_specular relative to plain F0.
+        const float r0 = f0_of(s.ior);
+        const glm::vec3 spec_scale = r0 > 0.0f ? s.f0_dielectric / r0 : glm::vec3(0.0f);
+        const glm::vec3 fd = glm::min(glm::vec3(1.0f), f * spec_scale);
+        k.reflection = metal + s.dielectric * s.smoothness * fd;
+        k.refraction = s.dielectric * s.transmission * (glm::vec3(1.0f) - fd) * (front_face ? s.base : glm::vec3(1.0f));
+        return k;
+    }
+
+private:
+    static float f0_of(float ior) { const float r = (ior - 1.0f) / (ior + 1.0f); return r * r; }
+
+    Vec3<T> spawn_origin(const SurfacePoint<T>& sp, const Vec3<T>& direction) const {
+        return offset_ray_origin(settings_.offset, sp.position, sp.geometric_normal, direction, T(settings_.epsilon));
+    }
+
+    const Scene& scene_;
+    const Tracer& tracer_;
+    WhittedSettings settings_;
+};
+
+}  // namespace rt
