@@ -53,4 +53,3 @@ if(TARGET 02_raster_hybrid)
   endforeach()
 endif()
 
-include(cli_tests.cmake)

@@ -6,9 +6,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include <unistd.h>
-
 #include "../trace/shading.h"
+#include "atomic_file.h"
 
 #ifdef RT_PORTABLE
 #include <stb/stb_image_write.h>
@@ -29,27 +28,22 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
+#ifndef RT_PORTABLE
 bool is_float_format(const std::string& ext) { return ext == ".exr" || ext == ".hdr"; }
+#endif
 
-// sRGB-encoded 8-bit RGB, the same quantisation for every writer (round to nearest).
-std::vector<std::uint8_t> to_srgb8(const Image& image) {
-    std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
+}  // namespace
+
+std::vector<std::uint8_t> to_srgb8(const Image& image, int channels) {
+    const std::size_t n = std::size_t(channels);
+    std::vector<std::uint8_t> bytes(image.pixels.size() * n, 255);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             const float v = image.pixels[i][c];
-            bytes[i * 3 + std::size_t(c)] = std::uint8_t(std::lround(linear_to_srgb(std::isfinite(v) ? v : 0.0f) * 255.0f));
+            bytes[i * n + std::size_t(c)] = std::uint8_t(std::lround(linear_to_srgb(std::isfinite(v) ? v : 0.0f) * 255.0f));
         }
     return bytes;
 }
-
-// A temporary name beside the target, keeping the extension so the writer picks the same format.
-std::string temporary_path(const std::string& path) {
-    const fs::path p(path);
-    return (p.parent_path() / ("." + p.stem().string() + ".tmp" + std::to_string(::getpid()) + p.extension().string()))
-        .string();
-}
-
-}  // namespace
 
 bool is_supported_image_path(const std::string& path) {
     const std::string ext = lower_extension(path);
@@ -63,7 +57,7 @@ bool is_supported_image_path(const std::string& path) {
 void write_image(const std::string& path, const Image& image) {
     if (!is_supported_image_path(path)) throw std::runtime_error("unsupported image type: " + path);
     const std::string ext = lower_extension(path);
-    const std::string tmp = temporary_path(path);
+    const std::string tmp = temporary_sibling(path);
     bool ok = false;
     std::string error;
 #ifdef RT_PORTABLE
@@ -88,12 +82,11 @@ void write_image(const std::string& path, const Image& image) {
         if (!ok) error = out->geterror();
     }
 #endif
-    std::error_code ec;
-    if (ok) fs::rename(tmp, path, ec);
-    if (!ok || ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write image " + path + ": " + (error.empty() ? ec.message() : error));
+    if (!ok) {
+        discard_temporary(tmp);
+        throw std::runtime_error("cannot write image " + path + ": " + error);
     }
+    commit_temporary(tmp, path);
 }
 
 Image read_image(const std::string& path) {

@@ -2,6 +2,7 @@
 // OpenImageIO (or, in the RT_PORTABLE build for bare GPU machines, PNG only through stb_image_write).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ void write_image(const std::string& path, const Image& image);
 
 // Reads any image OpenImageIO can read into linear RGB (8-bit files are taken as sRGB). Not in the portable build.
 Image read_image(const std::string& path);
+
+// sRGB-encoded 8-bit values, rounded to nearest (what PNG/JPEG files and windows show); NaN/Inf become 0.
+// channels = 3 (RGB) or 4 (RGBA, alpha 255).
+std::vector<std::uint8_t> to_srgb8(const Image& image, int channels = 3);
 
 // Number of pixels with a NaN or Inf component.
 std::size_t count_non_finite(const Image& image);

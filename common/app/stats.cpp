@@ -1,10 +1,9 @@
 #include "stats.h"
 
-#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
-#include <unistd.h>
+#include "atomic_file.h"
 
 namespace rt {
 
@@ -30,24 +29,16 @@ nlohmann::json make_stats_json(const std::string& stage, const std::string& scen
 }
 
 void write_json(const std::string& path, const nlohmann::json& json) {
-    namespace fs = std::filesystem;
-    const fs::path p(path);
-    const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(::getpid()));
+    const std::string tmp = temporary_sibling(path);
     {
         std::ofstream out(tmp);
         out << json.dump(2) << '\n';
         if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
+            discard_temporary(tmp);
             throw std::runtime_error("cannot write " + path);
         }
     }
-    std::error_code ec;
-    fs::rename(tmp, p, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error("cannot write " + path + ": " + ec.message());
-    }
+    commit_temporary(tmp, path);
 }
 
 std::string cpu_model_name() {

@@ -1,0 +1,49 @@
+// Stage 02's traversal: no acceleration structure, as in stage 01 (brute_force_tracer.h). Every ray is tested
+// against every triangle. The wavefront pipeline (common/gpu/wavefront.h) calls these from its trace pass
+// (reflection and refraction rays) and its shadow pass; stages 03-05 replace this file with a faster traversal.
+#include "wavefront/wavefront.glsl"
+#include "scene.glsl"
+
+bool intersect_scene_triangle(Ray ray, WatertightRay w, uint i, out float t, out float u, out float v) {
+    vec3 a, b, c;
+    load_triangle(i, a, b, c);
+#if RT_INTERSECT_METHOD == RT_INTERSECT_WATERTIGHT
+    return intersect_watertight(ray, w, a, b, c, t, u, v);
+#else
+    return intersect_moller(ray, a, b, c, t, u, v);
+#endif
+}
+
+// Nearest hit: keep the closest so far, shrinking tmax so later triangles must beat it.
+bool trace_closest(Ray ray, out Hit hit) {
+    hit = no_hit();
+    const WatertightRay w = watertight_ray(ray.direction);
+    const uint n = rt_triangle_count;
+    for (uint i = 0u; i < n; ++i) {
+        float t, u, v;
+        if (intersect_scene_triangle(ray, w, i, t, u, v)) {
+            ray.tmax = t;
+            hit.t = t;
+            hit.u = u;
+            hit.v = v;
+            hit.triangle = int(i);
+        }
+    }
+    wf_count_tests(n);
+    return hit.triangle >= 0;
+}
+
+// Shadow rays only need to know whether anything blocks the light: stop at the first hit.
+bool trace_any(Ray ray) {
+    const WatertightRay w = watertight_ray(ray.direction);
+    const uint n = rt_triangle_count;
+    for (uint i = 0u; i < n; ++i) {
+        float t, u, v;
+        if (intersect_scene_triangle(ray, w, i, t, u, v)) {
+            wf_count_tests(i + 1u);   // count only the tests made
+            return true;
+        }
+    }
+    wf_count_tests(n);
+    return false;
+}

@@ -1,0 +1,45 @@
+// Binding points shared by C++ and GLSL. The GLSL side is common/shaders/bindings.glsl (#defines with the same
+// names in upper case, RT_BINDING_POSITIONS = kBindingPositions, ...); the test gpu_bindings_test keeps them equal.
+//
+// SSBO bindings (GL_SHADER_STORAGE_BUFFER):
+//   0..7    the scene, bound once by GpuScene::bind() (plus the counters)
+//   8..15   the common GPU primitives (scan, compaction); they bind these themselves for each call, so they never
+//           disturb the scene's bindings
+//   16..    the stages' own buffers (acceleration structures, ray queues, ...): kBindingStageFirst + i
+//           (every implementation allows at least 96 SSBO binding points on NVIDIA and 32+ on Mesa, but a single
+//           shader may use at most GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS of them, 16 on NVIDIA)
+// UBO bindings: 0 = the scene block (camera, background, counts); stages from kUboStageFirst.
+// Texture units: 0 = the scene's texture array; stages from kTextureUnitStageFirst.
+#pragma once
+
+namespace rt::gpu {
+
+// Scene (std430; layouts in common/shaders/scene.glsl and gpu_scene.h).
+constexpr unsigned kBindingPositions = 0;     // vec4[3 * triangles] (w unused)
+constexpr unsigned kBindingNormals = 1;       // vec4[3 * triangles] (w unused)
+constexpr unsigned kBindingUvs = 2;           // vec2[3 * triangles]
+constexpr unsigned kBindingMaterialIds = 3;   // uint[triangles]
+constexpr unsigned kBindingMaterials = 4;     // Material[]
+constexpr unsigned kBindingLights = 5;        // Light[]
+constexpr unsigned kBindingTextureInfo = 6;   // TextureInfo[] (size of each layer of the texture array)
+constexpr unsigned kBindingCounters = 7;      // uvec2[] 64-bit counters (counters.glsl, CounterBuffer)
+
+// Common GPU primitives.
+constexpr unsigned kBindingScanIn = 8;
+constexpr unsigned kBindingScanOut = 9;
+constexpr unsigned kBindingScanSums = 10;
+constexpr unsigned kBindingCompactFlags = 11;
+constexpr unsigned kBindingCompactOffsets = 12;
+constexpr unsigned kBindingCompactValues = 13;
+constexpr unsigned kBindingCompactOut = 14;
+constexpr unsigned kBindingHarness = 15;      // the GLSL test harness' in/out buffer
+
+constexpr unsigned kBindingStageFirst = 16;
+
+constexpr unsigned kUboScene = 0;
+constexpr unsigned kUboStageFirst = 1;
+
+constexpr unsigned kTextureUnitTextures = 0;
+constexpr unsigned kTextureUnitStageFirst = 1;
+
+}  // namespace rt::gpu

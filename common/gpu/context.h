@@ -1,0 +1,79 @@
+// GL 4.5 core contexts for the GPU stages: headless through EGL (a hardware device when there is one, else Mesa's
+// surfaceless platform, i.e. llvmpipe), headless through OSMesa (dlopen'ed only when chosen), or a GLFW window.
+// GL functions come through the glad loader (generated at build time) fed by the backend's GetProcAddress; no
+// libGL/libOpenGL/libOSMesa is linked. Headless contexts have no default framebuffer: render into FBOs/SSBOs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl_check.h"
+
+namespace CLI { class App; }
+
+namespace rt::gpu {
+
+struct GpuOptions {
+    std::string backend = "auto";   // auto | egl | osmesa   (auto: EGL, then OSMesa)
+    bool window = false;            // GLFW window instead of a headless context (not in RT_PORTABLE builds)
+    std::string screenshot;         // window mode: where the stage saves what the window shows (empty = none)
+    int window_width = 1024, window_height = 768;
+#ifdef RT_GL_DEBUG
+    bool debug = true;              // GL_KHR_debug output and a debug context
+#else
+    bool debug = false;
+#endif
+};
+
+// Adds --backend auto|egl|osmesa, --window, --screenshot FILE, --gl-debug to a stage's command line.
+void add_gpu_options(CLI::App& app, GpuOptions& options);
+
+// A current GL 4.5 core context. Move-only; destroying it releases the context (and the window).
+// One context is current at a time on the creating thread; make_current() reloads the GL function pointers when
+// another context was used in between.
+class GpuContext {
+public:
+    GpuContext();
+    GpuContext(GpuContext&&) noexcept;
+    GpuContext& operator=(GpuContext&&) noexcept;
+    ~GpuContext();
+
+    bool valid() const { return impl_ != nullptr; }
+    // "egl-device", "egl-surfaceless", "osmesa" or "glfw".
+    const std::string& backend() const;
+    // GL_RENDERER, GL_VENDOR and GL_VERSION strings, and the version numbers.
+    const std::string& renderer() const;
+    const std::string& vendor() const;
+    const std::string& version() const;
+    int gl_major() const;
+    int gl_minor() const;
+    // What was tried before this backend succeeded (empty when the first choice worked), for diagnostics.
+    const std::string& fallback_log() const;
+
+    void make_current();
+
+    // Window mode only (throws otherwise): shows the colour attachment 0 of `fbo` (w x h) in the window (blit,
+    // scaled to fit), swaps and polls events. Returns false once the user closed the window.
+    bool present(unsigned fbo, int width, int height);
+    bool is_window() const;
+    bool should_close() const;
+    // Window mode: the window's pixels as RGBA8, rows top to bottom (for --screenshot).
+    std::vector<std::uint8_t> read_window_rgba8(int& width, int& height) const;
+
+    struct Impl;
+private:
+    explicit GpuContext(std::unique_ptr<Impl> impl);
+    friend GpuContext create_context(const GpuOptions& options);
+    std::unique_ptr<Impl> impl_;
+};
+
+// Creates and makes current a context as the options ask. Throws std::runtime_error naming every backend tried and
+// why it failed.
+GpuContext create_context(const GpuOptions& options);
+
+// Headless shortcut: backend "auto", "egl" or "osmesa".
+GpuContext create_headless_context(const std::string& backend = "auto", bool debug = false);
+
+}  // namespace rt::gpu

@@ -1,0 +1,102 @@
+// The scene on the GPU: rt::Scene uploaded as SSBOs (plus a UBO and a texture array), in one layout that stages
+// 02-05 all read through common/shaders/scene.glsl. Upload once per frame (or once, for a still scene), then bind()
+// before the passes; the bindings are in bindings.h / bindings.glsl.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "../scene/scene.h"
+#include "buffer.h"
+
+namespace rt::gpu {
+
+// std430 / std140 mirrors of the GLSL structs in scene.glsl and camera.glsl (vec3 + scalar pairs fill 16 bytes).
+struct GpuCamera {                       // camera.glsl: Camera
+    glm::vec3 position; std::int32_t projection;
+    glm::vec3 right;    float tan_half_fov;   // std::tan(yfov * 0.5f), as rt::camera_ray computes it
+    glm::vec3 up;       float aspect;
+    glm::vec3 forward;  float xmag;
+    float ymag, znear, zfar, yfov;
+};
+static_assert(sizeof(GpuCamera) == 80);
+
+struct GpuMaterial {                     // scene.glsl: Material
+    glm::vec4 base_color;
+    glm::vec3 emissive;       std::int32_t base_color_texture;
+    glm::vec3 specular_color; float metallic;
+    float roughness, transmission, ior, specular;
+};
+static_assert(sizeof(GpuMaterial) == 64);
+
+struct GpuLight {                        // scene.glsl: Light
+    glm::vec3 color;     std::int32_t type;
+    glm::vec3 position;  float intensity;
+    glm::vec3 direction; float range;
+    float inner_cone, outer_cone;
+    float cos_inner, cos_outer;          // std::cos(inner_cone), std::cos(outer_cone), as light_incidence has them
+};
+static_assert(sizeof(GpuLight) == 64);
+
+struct GpuTextureInfo {                  // scene.glsl: TextureInfo
+    std::int32_t width, height, nearest, layer;
+};
+static_assert(sizeof(GpuTextureInfo) == 16);
+
+struct GpuSceneBlock {                   // scene.glsl: uniform SceneBlock (std140)
+    GpuCamera camera;
+    glm::vec3 background; std::uint32_t triangle_count;
+    std::uint32_t material_count, light_count, texture_count, pad;
+};
+static_assert(sizeof(GpuSceneBlock) == 112);
+
+GpuCamera to_gpu(const Camera& camera);
+GpuMaterial to_gpu(const Material& material);
+GpuLight to_gpu(const Light& light);
+
+class GpuScene {
+public:
+    GpuScene() = default;
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+    GpuScene(GpuScene&&) noexcept;
+    GpuScene& operator=(GpuScene&&) noexcept;
+    ~GpuScene();
+
+    // Uploads everything (buffers and the texture array are reallocated only when their sizes change). Needs a
+    // current context.
+    void upload(const Scene& scene);
+    // Only the camera and background (a camera animation over a still scene).
+    void upload_camera(const Camera& camera, const glm::vec3& background);
+    // Binds every SSBO, the scene UBO and the texture array at their binding points.
+    void bind() const;
+
+    std::size_t triangle_count() const { return block_.triangle_count; }
+    std::size_t light_count() const { return block_.light_count; }
+    std::size_t material_count() const { return block_.material_count; }
+    std::size_t texture_count() const { return block_.texture_count; }
+    const GpuSceneBlock& block() const { return block_; }
+    // Bytes of GPU memory the scene takes.
+    std::size_t bytes() const;
+
+    // The buffers, for stages that build on them (acceleration structures, a vertex pull in the rasterizer).
+    const Buffer& positions() const { return positions_; }   // vec4 per vertex, 3 per triangle
+    const Buffer& normals() const { return normals_; }
+    const Buffer& uvs() const { return uvs_; }
+    const Buffer& material_ids() const { return material_ids_; }
+    const Buffer& materials() const { return materials_; }
+    const Buffer& lights() const { return lights_; }
+    GLuint texture_array() const { return texture_array_; }
+
+private:
+    void upload_textures(const Scene& scene);
+    Buffer positions_, normals_, uvs_, material_ids_, materials_, lights_, texture_info_, ubo_;
+    GLuint texture_array_ = 0;
+    int tex_width_ = 0, tex_height_ = 0, tex_layers_ = 0;
+    std::size_t texture_bytes_ = 0;
+    GpuSceneBlock block_{};
+};
+
+}  // namespace rt::gpu

@@ -1,0 +1,21 @@
+#version 450 core
+// Second half of a multi-level scan: adds the scanned block sums back, data[i] += sums[block of i].
+#include "bindings.glsl"
+#include "compute.glsl"
+#include "scan_common.glsl"
+
+layout(local_size_x = SCAN_THREADS) in;
+
+layout(std430, binding = RT_BINDING_SCAN_OUT) buffer ScanOut { uint scan_out[]; };
+layout(std430, binding = RT_BINDING_SCAN_SUMS) readonly buffer ScanSums { uint scan_sums[]; };
+
+uniform uint n;
+
+void main() {
+    const uint block = rt_group_index();
+    if (block == 0u) return;   // the first block's offset is 0
+    const uint add = scan_sums[block];
+    const uint base = block * SCAN_BLOCK + gl_LocalInvocationID.x;
+    if (base < n) scan_out[base] += add;
+    if (base + SCAN_THREADS < n) scan_out[base + SCAN_THREADS] += add;
+}

@@ -1,0 +1,72 @@
+#version 450 core
+// Work-efficient exclusive prefix sum of one block of SCAN_BLOCK uints per work group (Blelloch 1990; GPU Gems 3,
+// ch. 39): up-sweep (reduce) and down-sweep in shared memory, padded against bank conflicts. Writes the block's
+// total to scan_sums[block]; the host scans those sums recursively and adds them back (scan_add.comp).
+// Defines: SCAN_FLAGS: scan (in != 0 ? 1 : 0) instead of in (stream compaction's flag scan).
+#include "bindings.glsl"
+#include "compute.glsl"
+#include "scan_common.glsl"
+
+layout(local_size_x = SCAN_THREADS) in;
+
+layout(std430, binding = RT_BINDING_SCAN_IN) readonly buffer ScanIn { uint scan_in[]; };
+layout(std430, binding = RT_BINDING_SCAN_OUT) writeonly buffer ScanOut { uint scan_out[]; };
+layout(std430, binding = RT_BINDING_SCAN_SUMS) writeonly buffer ScanSums { uint scan_sums[]; };
+
+uniform uint n;
+
+shared uint temp[SCAN_BLOCK + (SCAN_BLOCK >> SCAN_LOG_BANKS)];
+
+uint load(uint i) {
+    if (i >= n) return 0u;
+#ifdef SCAN_FLAGS
+    return scan_in[i] != 0u ? 1u : 0u;
+#else
+    return scan_in[i];
+#endif
+}
+
+void main() {
+    const uint block = rt_group_index();
+    const uint t = gl_LocalInvocationID.x;
+    const uint base = block * SCAN_BLOCK;
+    const uint ai = t, bi = t + SCAN_THREADS;
+    temp[SCAN_PAD(ai)] = load(base + ai);
+    temp[SCAN_PAD(bi)] = load(base + bi);
+
+    // Up-sweep: build partial sums in place up the tree.
+    uint offset = 1u;
+    for (uint d = SCAN_BLOCK >> 1; d > 0u; d >>= 1) {
+        memoryBarrierShared();
+        barrier();
+        if (t < d) {
+            const uint i = offset * (2u * t + 1u) - 1u;
+            const uint j = offset * (2u * t + 2u) - 1u;
+            temp[SCAN_PAD(j)] += temp[SCAN_PAD(i)];
+        }
+        offset <<= 1;
+    }
+    memoryBarrierShared();
+    barrier();
+    if (t == 0u) {
+        scan_sums[block] = temp[SCAN_PAD(SCAN_BLOCK - 1u)];
+        temp[SCAN_PAD(SCAN_BLOCK - 1u)] = 0u;
+    }
+    // Down-sweep: traverse back down, swapping and adding.
+    for (uint d = 1u; d < SCAN_BLOCK; d <<= 1) {
+        offset >>= 1;
+        memoryBarrierShared();
+        barrier();
+        if (t < d) {
+            const uint i = SCAN_PAD(offset * (2u * t + 1u) - 1u);
+            const uint j = SCAN_PAD(offset * (2u * t + 2u) - 1u);
+            const uint x = temp[i];
+            temp[i] = temp[j];
+            temp[j] += x;
+        }
+    }
+    memoryBarrierShared();
+    barrier();
+    if (base + ai < n) scan_out[base + ai] = temp[SCAN_PAD(ai)];
+    if (base + bi < n) scan_out[base + bi] = temp[SCAN_PAD(bi)];
+}

@@ -1,0 +1,97 @@
+// The scene on the GPU, as GpuScene (common/gpu/gpu_scene.h) uploads it once per frame: the same triangle soup,
+// materials, lights, textures and camera as rt::Scene. Layouts here and in gpu_scene.h must stay equal (a unit test
+// checks the struct sizes and offsets). Define RT_SCENE_WRITABLE before including to drop the readonly qualifiers.
+#include "bindings.glsl"
+#include "camera.glsl"
+
+#ifdef RT_SCENE_WRITABLE
+#define RT_SCENE_ACCESS
+#else
+#define RT_SCENE_ACCESS readonly
+#endif
+
+#define RT_LIGHT_POINT 0
+#define RT_LIGHT_SPOT 1
+#define RT_LIGHT_DIRECTIONAL 2
+
+struct Material {                    // 64 bytes, std430 (GpuMaterial)
+    vec4 base_color;
+    vec3 emissive;       int base_color_texture;   // -1 = none
+    vec3 specular_color; float metallic;
+    float roughness; float transmission; float ior; float specular;
+};
+
+struct Light {                       // 64 bytes, std430 (GpuLight)
+    vec3 color;     int type;
+    vec3 position;  float intensity;
+    vec3 direction; float range;
+    float inner_cone; float outer_cone;
+    float cos_inner; float cos_outer;              // std::cos of the cones, computed on the CPU
+};
+
+struct TextureInfo {                 // 16 bytes (GpuTextureInfo): layer `layer` of rt_textures holds it at (0,0)
+    int width; int height; int nearest; int layer;
+};
+
+// Triangle i uses entries 3i, 3i+1, 3i+2.
+layout(std430, binding = RT_BINDING_POSITIONS) RT_SCENE_ACCESS buffer ScenePositions { vec4 rt_positions[]; };
+layout(std430, binding = RT_BINDING_NORMALS) RT_SCENE_ACCESS buffer SceneNormals { vec4 rt_normals[]; };
+layout(std430, binding = RT_BINDING_UVS) RT_SCENE_ACCESS buffer SceneUvs { vec2 rt_uvs[]; };
+layout(std430, binding = RT_BINDING_MATERIAL_IDS) RT_SCENE_ACCESS buffer SceneMaterialIds { uint rt_material_ids[]; };
+layout(std430, binding = RT_BINDING_MATERIALS) RT_SCENE_ACCESS buffer SceneMaterials { Material rt_materials[]; };
+layout(std430, binding = RT_BINDING_LIGHTS) RT_SCENE_ACCESS buffer SceneLights { Light rt_lights[]; };
+// sRGB decode and alpha tables (the exact floats the C++ sample_texture uses), then one TextureInfo per texture.
+layout(std430, binding = RT_BINDING_TEXTURE_INFO) readonly buffer SceneTextures {
+    float rt_srgb_lut[256];
+    float rt_alpha_lut[256];
+    TextureInfo rt_texture_info[];
+};
+// RGBA8 bytes as stored in the file (row 0 = top, v = 0), one texture per layer, sized to the largest texture.
+layout(binding = RT_TEXTURE_UNIT_TEXTURES) uniform usampler2DArray rt_textures;
+
+layout(std140, binding = RT_UBO_SCENE) uniform SceneBlock {   // 112 bytes (GpuSceneBlock)
+    Camera rt_camera;
+    vec3 rt_background; uint rt_triangle_count;
+    uint rt_material_count; uint rt_light_count; uint rt_texture_count; uint rt_scene_pad;
+};
+
+void load_triangle(uint triangle, out vec3 a, out vec3 b, out vec3 c) {
+    a = rt_positions[3u * triangle].xyz;
+    b = rt_positions[3u * triangle + 1u].xyz;
+    c = rt_positions[3u * triangle + 2u].xyz;
+}
+
+// Twin of rt::SurfacePoint / rt::surface_point (common/trace/whitted.h), float geometry.
+struct SurfacePoint {
+    vec3 position;          // interpolated from the vertices
+    vec3 geometric_normal;  // unit, facing the incoming ray
+    vec3 shading_normal;    // unit, on the same side as geometric_normal
+    vec2 uv;
+    bool front_face;
+    uint material;
+};
+
+SurfacePoint surface_point(Ray ray, uint triangle, float u, float v) {
+    const uint i = 3u * triangle;
+    const vec3 a = rt_positions[i].xyz, b = rt_positions[i + 1u].xyz, c = rt_positions[i + 2u].xyz;
+    precise float w = 1.0 - u - v;
+    SurfacePoint s;
+    precise vec3 position = w * a + u * b + v * c;
+    s.position = position;
+    precise vec3 ba = b - a, ca = c - a;
+    vec3 ng = rt_cross(ba, ca);
+    const float len = rt_length(ng);
+    precise vec3 ng_unit = ng / len;
+    ng = len > 0.0 ? ng_unit : -ray.direction;
+    s.front_face = rt_dot(ng, ray.direction) < 0.0;
+    s.geometric_normal = s.front_face ? ng : -ng;
+    precise vec3 ns = w * rt_normals[i].xyz + u * rt_normals[i + 1u].xyz + v * rt_normals[i + 2u].xyz;
+    const float ns_len = rt_length(ns);
+    precise vec3 ns_unit = ns / ns_len;
+    ns = (ns_len > 0.0 && rt_isfinite(ns_len)) ? ns_unit : s.geometric_normal;
+    s.shading_normal = rt_dot(ns, s.geometric_normal) < 0.0 ? -ns : ns;
+    precise vec2 uv = w * rt_uvs[i] + u * rt_uvs[i + 1u] + v * rt_uvs[i + 2u];
+    s.uv = uv;
+    s.material = rt_material_ids[triangle];
+    return s;
+}

@@ -1,0 +1,218 @@
+// GLSL twin of the shading model (common/trace/shading.h, shading.cpp, and Whitted::coefficients of whitted.h);
+// docs/shading.md is the contract. Everything is linear RGB. Written operation for operation like the C++ code with
+// `precise`, so results are bit-identical where GLSL's arithmetic is IEEE-exact (add, mul, div and sqrt on
+// llvmpipe); pow() and the cone cosines differ: cosines come precomputed from the CPU (Light.cos_inner/cos_outer),
+// pow is the GPU's (unit tests allow a relative error for shade_light).
+#include "scene.glsl"
+
+#define RT_FRESNEL_SCHLICK 0
+#define RT_FRESNEL_EXACT 1
+
+const float RT_AMBIENT = 0.03;
+const float RT_DEFAULT_CUTOFF = 1e-3;
+const float RT_PI = 3.14159265358979;
+
+// Mirror reflection of d about n (n unit length).
+vec3 reflect_dir(vec3 d, vec3 n) {
+    precise vec3 r = d - 2.0 * rt_dot(d, n) * n;
+    return r;
+}
+
+// Snell's law; d unit, n on the incident side, eta = n_i / n_t. False under total internal reflection.
+bool refract_dir(vec3 d, vec3 n, float eta, out vec3 dir) {
+    dir = vec3(0.0);
+    precise float cos_i = -rt_dot(d, n);
+    precise float sin2_t = eta * eta * max(0.0, 1.0 - cos_i * cos_i);
+    if (sin2_t >= 1.0) return false;
+    precise float cos_t = sqrt(1.0 - sin2_t);
+    precise vec3 t = eta * d + (eta * cos_i - cos_t) * n;
+    dir = rt_normalize(t);
+    return true;
+}
+
+float fresnel_exact(float cos_i, float eta) {
+    cos_i = rt_clamp(cos_i, 0.0, 1.0);
+    precise float sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if (sin2_t >= 1.0) return 1.0;
+    precise float cos_t = sqrt(1.0 - sin2_t);
+    precise float rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    precise float rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    precise float r = 0.5 * (rs * rs + rp * rp);
+    return r;
+}
+
+float fresnel_schlick(float cos_i, float eta) {
+    cos_i = rt_clamp(cos_i, 0.0, 1.0);
+    precise float r0 = (eta - 1.0) / (eta + 1.0);
+    r0 *= r0;
+    if (r0 == 0.0) return 0.0;   // matched indices: no interface, nothing reflects (Schlick alone gives (1-c)^5)
+    float c = cos_i;
+    if (eta > 1.0) {
+        precise float sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+        if (sin2_t >= 1.0) return 1.0;
+        precise float ct = sqrt(1.0 - sin2_t);
+        c = ct;
+    }
+    precise float m = 1.0 - c;
+    precise float r = r0 + (1.0 - r0) * (m * m) * (m * m) * m;
+    return r;
+}
+
+float fresnel(int mode, float cos_i, float eta) {
+    return mode == RT_FRESNEL_EXACT ? fresnel_exact(cos_i, eta) : fresnel_schlick(cos_i, eta);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Textures (REPEAT; nearest or bilinear per texture; sRGB decoded through the same table as the CPU).
+
+int rt_wrap(int x, int n) { return x >= 0 ? x % n : (n - 1) - ((-(x + 1)) % n); }   // ((x % n) + n) % n
+
+vec4 rt_texel(TextureInfo info, int x, int y) {
+    x = rt_wrap(x, info.width);
+    y = rt_wrap(y, info.height);
+    const uvec4 p = texelFetch(rt_textures, ivec3(x, y, info.layer), 0);
+    return vec4(rt_srgb_lut[p.r], rt_srgb_lut[p.g], rt_srgb_lut[p.b], rt_alpha_lut[p.a]);
+}
+
+vec4 sample_texture(int texture_index, vec2 uv) {
+    const TextureInfo info = rt_texture_info[texture_index];
+    if (info.width <= 0 || info.height <= 0 || !rt_isfinite(uv.x) || !rt_isfinite(uv.y)) return vec4(1.0);
+    precise vec2 f = uv - floor(uv);
+    precise float fx = f.x * float(info.width), fy = f.y * float(info.height);
+    if (info.nearest != 0) return rt_texel(info, int(fx), int(fy));
+    precise float sx = fx - 0.5, sy = fy - 0.5;
+    const float x0f = floor(sx), y0f = floor(sy);
+    precise float ax = sx - x0f, ay = sy - y0f;
+    const int x0 = int(x0f), y0 = int(y0f);
+    const vec4 top = rt_mix(rt_texel(info, x0, y0), rt_texel(info, x0 + 1, y0), ax);
+    const vec4 bottom = rt_mix(rt_texel(info, x0, y0 + 1), rt_texel(info, x0 + 1, y0 + 1), ax);
+    return rt_mix(top, bottom, ay);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Whitted coefficients of a surface point (docs/shading.md).
+
+struct SurfaceCoefficients {
+    vec3 diffuse;
+    vec3 specular;
+    float shininess;
+    vec3 mirror;
+    float smoothness;
+    float dielectric;
+    float transmission;
+    vec3 base;
+    vec3 f0_dielectric;
+    vec3 emissive;
+    float ior;
+};
+
+SurfaceCoefficients surface_coefficients(Material m, vec4 tex) {
+    SurfaceCoefficients s;
+    const float metallic = rt_clamp(m.metallic, 0.0, 1.0);
+    const float roughness = rt_clamp(m.roughness, 0.0, 1.0);
+    precise vec3 base = m.base_color.rgb * tex.rgb;
+    s.base = base;
+    precise float dielectric = 1.0 - metallic;
+    s.dielectric = dielectric;
+    s.transmission = rt_clamp(m.transmission, 0.0, 1.0);
+    precise float smoothness = (1.0 - roughness) * (1.0 - roughness);
+    s.smoothness = smoothness;
+    s.ior = m.ior > 0.0 ? m.ior : 1.5;
+    precise float r0 = (s.ior - 1.0) / (s.ior + 1.0);
+    precise vec3 f0 = r0 * r0 * m.specular * m.specular_color;
+    s.f0_dielectric = min(vec3(1.0), f0);
+    precise vec3 diffuse = s.base * s.dielectric * (1.0 - s.transmission);
+    s.diffuse = diffuse;
+    precise vec3 mirror = s.base * metallic * s.smoothness;
+    s.mirror = mirror;
+    precise float alpha = max(roughness * roughness, 0.1);
+    precise float shininess = 2.0 / (alpha * alpha) - 2.0;
+    s.shininess = shininess;
+    precise vec3 specular = s.smoothness * (metallic * s.base + s.dielectric * s.f0_dielectric);
+    s.specular = specular;
+    s.emissive = m.emissive;
+    return s;
+}
+
+// Irradiance-like factor of one light at p with unit normal n (light_incidence in shading.cpp): the light's
+// radiance scale times the cosine term; to_light (unit) and distance (infinite for directional lights) are set.
+vec3 light_incidence(Light light, vec3 p, vec3 n, out vec3 to_light, out float distance) {
+    to_light = vec3(0.0);
+    distance = 0.0;
+    precise float scale = light.intensity;
+    if (light.type == RT_LIGHT_DIRECTIONAL) {
+        to_light = -rt_normalize(light.direction);
+        distance = RT_INFINITY;
+    } else {
+        precise vec3 d = light.position - p;
+        const float d2 = rt_dot(d, d);
+        if (!(d2 > 0.0)) return vec3(0.0);
+        precise float dist = sqrt(d2);
+        distance = dist;
+        precise vec3 tl = vec3(d.x / dist, d.y / dist, d.z / dist);
+        to_light = tl;
+        scale /= d2;
+        if (light.range > 0.0) {
+            // (Arguments of user functions are computed into precise locals first: `precise` does not reach
+            // through a call, and the compiler may otherwise reassociate r * r * r * r.)
+            precise float r = dist / light.range;
+            precise float window = 1.0 - r * r * r * r;
+            const float w = rt_clamp(window, 0.0, 1.0);
+            scale *= w * w;
+        }
+        if (light.type == RT_LIGHT_SPOT) {
+            const float cos_outer = light.cos_outer, cos_inner = light.cos_inner;
+            const float cd = rt_dot(rt_normalize(light.direction), -to_light);
+            precise float ramp = (cd - cos_outer) / max(cos_inner - cos_outer, 1e-4);
+            const float t = rt_clamp(ramp, 0.0, 1.0);
+            scale *= t * t;
+        }
+    }
+    const float cos_theta = rt_dot(n, to_light);
+    if (!(cos_theta > 0.0) || !(scale > 0.0)) return vec3(0.0);
+    precise vec3 r = light.color * (scale * cos_theta);
+    return r;
+}
+
+// Direct lighting of one light (not shadowed): Lambert plus the normalised Blinn-Phong highlight.
+vec3 shade_light(SurfaceCoefficients s, vec3 incidence, vec3 n, vec3 to_light, vec3 to_eye) {
+    precise vec3 brdf = s.diffuse / RT_PI;
+    if (s.smoothness > 0.0) {
+        precise vec3 half_vector = to_light + to_eye;
+        const vec3 h = rt_normalize(half_vector);
+        const float nh = max(rt_dot(n, h), 0.0);
+        brdf += s.specular * ((s.shininess + 8.0) / (8.0 * RT_PI)) * pow(nh, s.shininess);
+    }
+    precise vec3 r = brdf * incidence;
+    return r;
+}
+
+// Weights of the reflected and refracted rays (Whitted::coefficients in whitted.h): metals reflect their base
+// colour (Schlick with F0 = base); the dielectric part reflects F and, where it transmits, refracts (1 - F).
+struct ReflectRefract {
+    vec3 reflection;
+    vec3 refraction;
+};
+
+float rt_f0_of(float ior) {
+    precise float r = (ior - 1.0) / (ior + 1.0);
+    precise float r2 = r * r;
+    return r2;
+}
+
+ReflectRefract reflect_refract_coefficients(SurfaceCoefficients s, bool front_face, float cos_i, float f) {
+    ReflectRefract k;
+    precise float m = 1.0 - cos_i;
+    precise vec3 f_metal = s.base + (vec3(1.0) - s.base) * (m * m * m * m * m);
+    precise vec3 metal = (1.0 - s.dielectric) * s.smoothness * f_metal;
+    const float r0 = rt_f0_of(s.ior);
+    precise vec3 scaled = s.f0_dielectric / r0;
+    const vec3 spec_scale = r0 > 0.0 ? scaled : vec3(0.0);
+    precise vec3 fs = f * spec_scale;
+    const vec3 fd = min(vec3(1.0), fs);
+    precise vec3 reflection = metal + s.dielectric * s.smoothness * fd;
+    precise vec3 refraction = s.dielectric * s.transmission * (vec3(1.0) - fd) * (front_face ? s.base : vec3(1.0));
+    k.reflection = reflection;
+    k.refraction = refraction;
+    return k;
+}

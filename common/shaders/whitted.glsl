@@ -1,0 +1,65 @@
+// Whitted's per-hit logic for the GPU stages: the body of Whitted::radiance (common/trace/whitted.h) cut into the
+// pieces the wavefront passes need (common/shaders/wavefront/shade.comp). docs/shading.md is the contract; the
+// arithmetic comes from the GLSL twins in shading.glsl, offset.glsl and scene.glsl, so a hit shades as on the CPU.
+// Compile-time switches (rt::gpu::effect_defines): ENABLE_TEXTURES samples base colour textures.
+#include "shading.glsl"
+#include "offset.glsl"
+#include "intersect.glsl"
+
+// What a hit needs for shading: the surface point (surface_point in whitted.h) and its Whitted coefficients.
+struct WhittedSurface {
+    SurfacePoint point;
+    SurfaceCoefficients coefficients;
+};
+
+WhittedSurface whitted_surface(Ray ray, Hit hit) {
+    WhittedSurface w;
+    w.point = surface_point(ray, uint(hit.triangle), hit.u, hit.v);
+    const Material material = rt_materials[w.point.material];
+    vec4 texel = vec4(1.0);
+#ifdef ENABLE_TEXTURES
+    if (material.base_color_texture >= 0) texel = sample_texture(material.base_color_texture, w.point.uv);
+#endif
+    w.coefficients = surface_coefficients(material, texel);
+    return w;
+}
+
+// The part of the local illumination that needs no shadow ray: emission plus the constant ambient term.
+vec3 whitted_emission_ambient(SurfaceCoefficients s) {
+    precise vec3 c = s.emissive + RT_AMBIENT * s.diffuse;
+    return c;
+}
+
+float whitted_max_component(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// Where a secondary ray leaves the surface (--offset epsilon | robust), as Whitted::spawn_origin.
+vec3 whitted_spawn_origin(SurfacePoint sp, vec3 direction, int offset_method, float epsilon) {
+    return offset_ray_origin(offset_method, sp.position, sp.geometric_normal, direction, epsilon);
+}
+
+// Weights of the reflected and refracted rays for a ray arriving along d (Whitted::coefficients): the Fresnel term
+// uses eta = n_incident / n_transmitted, 1/ior entering a front face, ior leaving through a back face.
+ReflectRefract whitted_coefficients(WhittedSurface w, vec3 d, int fresnel_mode, out float eta) {
+    const float cos_i = rt_clamp(-rt_dot(d, w.point.shading_normal), 0.0, 1.0);
+    precise float inv_ior = 1.0 / w.coefficients.ior;
+    eta = w.point.front_face ? inv_ior : w.coefficients.ior;
+    const float f = fresnel(fresnel_mode, cos_i, eta);
+    return reflect_refract_coefficients(w.coefficients, w.point.front_face, cos_i, f);
+}
+
+// Mirror direction about the shading normal; about the geometric normal when the shading normal would send the
+// ray under the surface (strongly interpolated normals). Unit length.
+vec3 whitted_reflection_dir(SurfacePoint sp, vec3 d) {
+    vec3 dir = reflect_dir(d, sp.shading_normal);
+    if (rt_dot(dir, sp.geometric_normal) <= 0.0) dir = reflect_dir(d, sp.geometric_normal);
+    return rt_normalize(dir);
+}
+
+// Snell's law about the shading normal; false under total internal reflection. Unit length.
+bool whitted_refraction_dir(SurfacePoint sp, vec3 d, float eta, out vec3 dir) {
+    vec3 t;
+    dir = vec3(0.0);
+    if (!refract_dir(d, sp.shading_normal, eta, t)) return false;
+    dir = rt_normalize(t);
+    return true;
+}

@@ -1,0 +1,27 @@
+# Tests every GPU stage gets, run as scripts (tests/run_gpu_case.cmake), labelled "gpu" and "gpu-<stage>":
+#   gpu.<stage>.egl_and_osmesa_agree   the two headless backends render the same image (threshold 0)
+#   gpu.<stage>.window_screenshot      under xvfb-run, --window --frames 3 --screenshot opens a GLFW window, renders,
+#                                      saves the frame and exits 0; the screenshot equals the headless image
+function(rt_add_gpu_tests stage)
+  set(out ${CMAKE_BINARY_DIR}/test-output/gpu/${stage})
+  set(script ${CMAKE_CURRENT_SOURCE_DIR}/run_gpu_case.cmake)
+  add_test(NAME gpu.${stage}.egl_and_osmesa_agree
+           COMMAND ${CMAKE_COMMAND} -DMODE=backends -DEXE=$<TARGET_FILE:${stage}> -DOUT_DIR=${out}
+                   -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
+  set_tests_properties(gpu.${stage}.egl_and_osmesa_agree PROPERTIES LABELS "gpu;gpu-${stage}")
+  find_program(RT_XVFB_RUN xvfb-run)
+  if(RT_XVFB_RUN)
+    add_test(NAME gpu.${stage}.window_screenshot
+             COMMAND ${CMAKE_COMMAND} -DMODE=window -DEXE=$<TARGET_FILE:${stage}> -DOUT_DIR=${out}
+                     -DXVFB_RUN=${RT_XVFB_RUN} -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
+    set_tests_properties(gpu.${stage}.window_screenshot PROPERTIES LABELS "gpu;gpu-${stage}")
+  else()
+    message(WARNING "xvfb-run not found (scripts/setup installs it): no window test for ${stage}")
+  endif()
+endfunction()
+
+foreach(stage 02_raster_hybrid 03_uniform_grid 04_ray_hierarchy 05_ray_sorting)
+  if(TARGET ${stage})
+    rt_add_gpu_tests(${stage})
+  endif()
+endforeach()
