@@ -13,12 +13,16 @@ foreach(line IN LISTS golden_lines)
   list(APPEND RT_GOLDEN_SCENES "${CMAKE_MATCH_1}=${CMAKE_MATCH_2}")
 endforeach()
 
-# rt_add_golden_test(STAGE <target> NAME <scene name> SCENE <spec> [REFERENCE_STAGE <stage>] [PREFIX golden] [ARGS ...])
-# REFERENCE_STAGE compares with another stage's golden (cross-stage agreement).
+# rt_add_golden_test(STAGE <target> NAME <scene name> SCENE <spec> [REFERENCE_STAGE <stage>]
+#                    [REFERENCE_NAME <name>] [PREFIX golden] [ARGS ...])
+# REFERENCE_STAGE/REFERENCE_NAME compare with another golden (cross-stage agreement, far against whitted).
 function(rt_add_golden_test)
-  cmake_parse_arguments(G "" "STAGE;NAME;SCENE;REFERENCE_STAGE;PREFIX" "ARGS;LABELS" ${ARGN})
+  cmake_parse_arguments(G "" "STAGE;NAME;SCENE;REFERENCE_STAGE;REFERENCE_NAME;PREFIX" "ARGS;LABELS" ${ARGN})
   if(NOT G_REFERENCE_STAGE)
     set(G_REFERENCE_STAGE ${G_STAGE})
+  endif()
+  if(NOT G_REFERENCE_NAME)
+    set(G_REFERENCE_NAME ${G_NAME})
   endif()
   if(NOT G_PREFIX)
     set(G_PREFIX golden)
@@ -26,7 +30,7 @@ function(rt_add_golden_test)
   string(REPLACE ";" "|" args "${G_ARGS}")   # "|"-separated: a ";" would split the test command
   add_test(NAME ${G_PREFIX}.${G_STAGE}.${G_NAME}
            COMMAND ${CMAKE_COMMAND} -DSTAGE=$<TARGET_FILE:${G_STAGE}> -DSTAGE_NAME=${G_STAGE} -DSCENE=${G_SCENE}
-                   -DNAME=${G_NAME} -DGOLDEN=${PROJECT_SOURCE_DIR}/tests/golden/${G_REFERENCE_STAGE}/${G_NAME}.png
+                   -DNAME=${G_NAME} -DGOLDEN=${PROJECT_SOURCE_DIR}/tests/golden/${G_REFERENCE_STAGE}/${G_REFERENCE_NAME}.png
                    -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/${G_PREFIX}/${G_STAGE} -DCOMPARE=$<TARGET_FILE:image_compare>
                    "-DARGS=${args}" -P ${CMAKE_CURRENT_SOURCE_DIR}/run_golden.cmake)
   set_tests_properties(${G_PREFIX}.${G_STAGE}.${G_NAME} PROPERTIES LABELS "${G_PREFIX};${G_PREFIX}-${G_STAGE};${G_LABELS}")
@@ -41,9 +45,17 @@ function(rt_add_golden_tests stage)
   endforeach()
 endfunction()
 
+# builtin:far is builtin:whitted moved by 1e4 with its camera: it must still look like whitted (robust offsets).
+function(rt_add_far_test stage)
+  rt_add_golden_test(STAGE ${stage} NAME far SCENE builtin:far REFERENCE_STAGE 01_naive REFERENCE_NAME whitted
+                     PREFIX far_like_whitted)
+endfunction()
+
 rt_add_golden_tests(01_naive)
+rt_add_far_test(01_naive)
 if(TARGET 02_raster_hybrid)
   rt_add_golden_tests(02_raster_hybrid)
+  rt_add_far_test(02_raster_hybrid)
   # Cross-stage agreement: 02's images match 01's references within the same tolerance.
   foreach(entry IN LISTS RT_GOLDEN_SCENES)
     string(REPLACE "=" ";" pair "${entry}")

@@ -81,6 +81,7 @@ bool intersect_watertight(Ray ray, WatertightRay w, vec3 a, vec3 b, vec3 c, out 
     precise float Cx = C[w.kx] - w.sx * C[w.kz], Cy = C[w.ky] - w.sy * C[w.kz];
     precise float U = Cx * By - Cy * Bx;
     precise float V = Ax * Cy - Ay * Cx;
+    if ((U < 0.0 && V > 0.0) || (U > 0.0 && V < 0.0)) return false;   // early rejection (intersect.h)
     precise float W = Bx * Ay - By * Ax;
 #ifndef RT_NO_DOUBLE
     if (U == 0.0 || V == 0.0 || W == 0.0) {

@@ -10,7 +10,7 @@
 vec3 offset_robust(vec3 p, vec3 n) {
     const float origin = 1.0 / 32.0;
     const float float_scale = 1.0 / 65536.0;
-    const float int_scale = 256.0;
+    const float int_scale = 8.0;      // offset.h explains why 8 and not W&B's 256
     vec3 result;
     for (int i = 0; i < 3; ++i) {
         precise float scaled = int_scale * n[i];

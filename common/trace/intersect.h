@@ -40,11 +40,14 @@ bool intersect_moller(const Ray<T>& ray, const Vec3<T>& a, const Vec3<T>& b, con
     return t > T(0) && t < ray.tmax;
 }
 
-// Per-ray constants of the watertight test (section 3 of the paper): the dominant axis kz and the shear.
+// Per-ray constants of the watertight test (section 3 of the paper): the dominant axis kz and the shear, also as
+// three vectors so that the sheared coordinates are dot products (Ax = A[kx] - sx A[kz] = dot(A, shear_x)): the
+// terms multiplied by 0 and 1 are exact, so the rounding is the same as the paper's, without indexing by kx, ky, kz.
 template <class T>
 struct WatertightRay {
     int kx = 0, ky = 1, kz = 2;
     T sx = 0, sy = 0, sz = 1;
+    Vec3<T> shear_x{1, 0, 0}, shear_y{0, 1, 0}, scale_z{0, 0, 1};
     explicit WatertightRay(const Vec3<T>& d) {
         const Vec3<T> ad = glm::abs(d);
         kz = (ad.x > ad.y) ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
@@ -54,6 +57,14 @@ struct WatertightRay {
         sx = d[kx] / d[kz];
         sy = d[ky] / d[kz];
         sz = T(1) / d[kz];
+        shear_x = Vec3<T>(0);
+        shear_y = Vec3<T>(0);
+        scale_z = Vec3<T>(0);
+        shear_x[kx] = T(1);
+        shear_x[kz] = -sx;
+        shear_y[ky] = T(1);
+        shear_y[kz] = -sy;
+        scale_z[kz] = sz;
     }
 };
 
@@ -62,12 +73,15 @@ bool intersect_watertight(const Ray<T>& ray, const WatertightRay<T>& w, const Ve
                           const Vec3<T>& c, T& t, T& u, T& v) {
     // Vertices relative to the origin, sheared so the ray becomes the +Z axis through (0,0).
     const Vec3<T> A = a - ray.origin, B = b - ray.origin, C = c - ray.origin;
-    const T Ax = A[w.kx] - w.sx * A[w.kz], Ay = A[w.ky] - w.sy * A[w.kz];
-    const T Bx = B[w.kx] - w.sx * B[w.kz], By = B[w.ky] - w.sy * B[w.kz];
-    const T Cx = C[w.kx] - w.sx * C[w.kz], Cy = C[w.ky] - w.sy * C[w.kz];
+    const T Ax = glm::dot(A, w.shear_x), Ay = glm::dot(A, w.shear_y);
+    const T Bx = glm::dot(B, w.shear_x), By = glm::dot(B, w.shear_y);
+    const T Cx = glm::dot(C, w.shear_x), Cy = glm::dot(C, w.shear_y);
     // Scaled barycentrics: 2D edge functions of the origin.
     T U = Cx * By - Cy * Bx;
     T V = Ax * Cy - Ay * Cx;
+    // Early rejection, as Moller-Trumbore rejects after its first barycentric: two nonzero edge functions of
+    // opposite signs put the ray outside, whatever the third. (Most tests in a scene miss, so this halves the cost.)
+    if ((U < T(0) && V > T(0)) || (U > T(0) && V < T(0))) return false;
     T W = Bx * Ay - By * Ax;
     if constexpr (sizeof(T) < sizeof(double)) {
         // An edge function that rounds to exactly zero is recomputed in double (paper, section 4.3), so the sign
@@ -81,7 +95,7 @@ bool intersect_watertight(const Ray<T>& ray, const WatertightRay<T>& w, const Ve
     if ((U < T(0) || V < T(0) || W < T(0)) && (U > T(0) || V > T(0) || W > T(0))) return false;
     const T det = U + V + W;
     if (!(det != T(0))) return false;             // degenerate, edge-on, or NaN
-    const T Az = w.sz * A[w.kz], Bz = w.sz * B[w.kz], Cz = w.sz * C[w.kz];
+    const T Az = glm::dot(A, w.scale_z), Bz = glm::dot(B, w.scale_z), Cz = glm::dot(C, w.scale_z);
     const T T_scaled = U * Az + V * Bz + W * Cz;
     // Compare t with 0 and tmax without dividing (signs depend on det).
     if (det < T(0) ? (T_scaled >= T(0) || T_scaled <= ray.tmax * det) : (T_scaled <= T(0) || T_scaled >= ray.tmax * det))

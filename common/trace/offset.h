@@ -8,6 +8,13 @@
 //           ch. 6: move p along n by a fixed number of units in the last place of each coordinate (integer
 //           arithmetic on the float bits), and by a small absolute amount near the origin where ulps vanish. The
 //           offset scales with the rounding error of p itself, at any magnitude.
+//           Their constant is 256 ulps, sized for hit points computed as origin + t * direction, whose error grows
+//           with t. Ours are interpolated from the triangle's vertices, P = w A + u B + v C, with an error of at most
+//           gamma(7) |P| ~ 3.5 ulps per coordinate (Higham's bound; pbrt-v4 section 6.8.5) when the vertices are of
+//           the size of P; 8 ulps covers that twice. 256 would push origins 0.25 units off the surface at 1e4 (a
+//           float ulp there is ~1e-3), enough to shift shadows and refractions visibly (tests: FarScene.*).
+//           Its limit: a triangle much larger than the coordinate it is offset in (vertices at +-1e4 around a point
+//           at 0.1) has more interpolation error than ulps of P; the near-origin rule covers coordinates below 1/32.
 //
 // In both, n is the geometric normal turned to the side the new ray leaves on. GLSL twin: common/shaders/offset.glsl.
 #pragma once
@@ -24,19 +31,19 @@ enum class OffsetMethod : int { Epsilon = 0, Robust = 1 };
 
 constexpr float kDefaultEpsilon = 1e-4f;
 
-// Constants of Waechter & Binder for float; for double the same ulp count and an absolute step scaled to double's
-// 29 extra mantissa bits.
+// Constants of Waechter & Binder for float (with int_scale 8 instead of their 256: see above); for double the same
+// ulp count and an absolute step scaled to double's 29 extra mantissa bits.
 template <class T> struct RobustOffsetConstants;
 template <> struct RobustOffsetConstants<float> {
     static constexpr float origin = 1.0f / 32.0f;
     static constexpr float float_scale = 1.0f / 65536.0f;
-    static constexpr float int_scale = 256.0f;
+    static constexpr float int_scale = 8.0f;
     using Int = std::int32_t;
 };
 template <> struct RobustOffsetConstants<double> {
     static constexpr double origin = 1.0 / 32.0;
     static constexpr double float_scale = 1.0 / 65536.0 / 536870912.0;
-    static constexpr double int_scale = 256.0;
+    static constexpr double int_scale = 8.0;
     using Int = std::int64_t;
 };
 
