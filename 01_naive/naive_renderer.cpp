@@ -59,7 +59,8 @@ void NaiveRenderer::add_options(CLI::App& app) {
     app.add_option("--precision", precision, "Arithmetic of the ray/triangle tests and hit points: float or double")
         ->transform(CLI::CheckedTransformer(std::map<std::string, Precision>{{"float", Precision::Float},
                                                                              {"double", Precision::Double}},
-                                            CLI::ignore_case))
+                                            CLI::ignore_case)
+                       .description("{float,double}"))
         ->default_str("float");
 }
 

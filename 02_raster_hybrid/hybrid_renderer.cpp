@@ -118,7 +118,7 @@ FrameResult HybridRenderer::render(const Scene& scene, const RenderSettings& set
     programs.push_back("02_raster_hybrid/primary_hits.comp");
     result.extra["programs"] = programs;
 
-    if (context_.is_window()) window_.present(context_, result.image, gpu_options.screenshot);
+    if (context_.is_window()) closed_ = !window_.present(context_, result.image, gpu_options.screenshot);
     return result;
 }
 

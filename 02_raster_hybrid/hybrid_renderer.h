@@ -23,6 +23,8 @@ public:
     std::string renderer_name() const override;     // GL_RENDERER
     // Without initialize() (unit tests), renders with whatever GL context is current.
     FrameResult render(const Scene& scene, const RenderSettings& settings) override;
+    // --window without --screenshot: the window stays open (and animated scenes loop) until it is closed.
+    bool interactive() const override { return gpu_options.window && gpu_options.screenshot.empty() && !closed_; }
 
     gpu::GpuOptions gpu_options;
 
@@ -32,6 +34,7 @@ private:
     gpu::GpuContext context_;    // declared before gpu_: destroyed after it
     std::unique_ptr<Gpu> gpu_;
     gpu::WindowPresenter window_;   // --window only
+    bool closed_ = false;           // the user closed the window
 };
 
 }  // namespace rt

@@ -1,6 +1,8 @@
 #include "driver.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -100,9 +102,15 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     std::vector<std::string> effect_names;
     Scene scene;
     std::size_t dropped = 0;
-    for (int frame = 0; frame < options.frames; ++frame) {
+    float duration = 0.0f;
+    for (const Animation& a : asset.animations) duration = std::max(duration, a.duration());
+    for (int frame = 0; frame < options.frames || renderer.interactive(); ++frame) {
+        // Past the requested frames only an interactive window keeps going: nothing more is written, and animated
+        // scenes loop.
+        const bool extra = frame >= options.frames;
         FlattenOptions flatten_options;
         flatten_options.time = float(frame / options.fps);
+        if (extra && duration > 0.0f) flatten_options.time = std::fmod(flatten_options.time, duration);
         flatten_options.camera = options.camera;
         flatten_options.aspect = float(options.render.width) / float(options.render.height);
         try {
@@ -124,6 +132,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         FrameResult result = renderer.render(scene, settings);
         result.stats.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
+        if (extra) continue;
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
         if (!path.empty()) write_image(path, result.image);
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);

@@ -14,7 +14,10 @@ namespace {
 template <class E>
 CLI::Option* add_enum(CLI::App& app, const std::string& name, E& value, const std::map<std::string, E>& names,
                       const std::string& help) {
-    return app.add_option(name, value, help)->transform(CLI::CheckedTransformer(names, CLI::ignore_case))
+    std::string choices;
+    for (const auto& [k, v] : names) choices += (choices.empty() ? "{" : ",") + k;
+    return app.add_option(name, value, help)
+        ->transform(CLI::CheckedTransformer(names, CLI::ignore_case).description(choices + "}"))
         ->default_str([&] { for (auto& [k, v] : names) if (v == value) return k; return std::string(); }());
 }
 

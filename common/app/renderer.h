@@ -50,6 +50,9 @@ public:
     virtual std::string renderer_name() const = 0;
     // Renders one frame of a flattened scene.
     virtual FrameResult render(const Scene& scene, const RenderSettings& settings) = 0;
+    // An interactive window that stays open after the requested frames: the driver keeps rendering (animated
+    // scenes loop) until this turns false (the user closed the window).
+    virtual bool interactive() const { return false; }
 };
 
 }  // namespace rt

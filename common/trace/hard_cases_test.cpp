@@ -31,6 +31,7 @@
 #include "common/scene/effects.h"
 #include "common/scene/gltf_io.h"
 #include "common/scene/scene.h"
+#include "hard_cases.h"
 #include "intersect.h"
 #include "offset.h"
 #include "shading.h"
@@ -38,6 +39,8 @@
 
 namespace rt {
 namespace {
+
+using namespace hard_cases;   // the meshes, rays and placements shared with the GLSL suite
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -49,157 +52,7 @@ const char* name_of(OffsetMethod m) { return m == OffsetMethod::Epsilon ? "epsil
 template <class T> const char* precision_name() { return sizeof(T) == sizeof(float) ? "float" : "double"; }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Scenes and sampling.
-
-// An asset holding `primitives`, each under its own root node placed by `translation` and `rotation`, with one
-// white diffuse material (the primitives' material index 0).
-SceneAsset asset_of(std::vector<Primitive> primitives, const glm::vec3& translation = glm::vec3(0.0f),
-                    const glm::quat& rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f)) {
-    SceneAsset asset;
-    asset.name = "hard case";
-    Material white;
-    white.metallic = 0.0f;
-    asset.materials.push_back(white);
-    for (Primitive& p : primitives) {
-        p.material = 0;
-        Mesh mesh;
-        mesh.primitives.push_back(std::move(p));
-        asset.meshes.push_back(std::move(mesh));
-        Node node;
-        node.mesh = int(asset.meshes.size() - 1);
-        node.translation = translation;
-        node.rotation = rotation;
-        asset.nodes.push_back(node);
-        asset.roots.push_back(int(asset.nodes.size() - 1));
-    }
-    return asset;
-}
-
-Scene flatten_without_light(const SceneAsset& asset) {
-    FlattenOptions options;
-    options.add_default_light = false;
-    return flatten(asset, options);
-}
-
-template <class T> Vec3<T> corner(const Scene& s, std::size_t triangle, int k) {
-    return Vec3<T>(s.positions[3 * triangle + std::size_t(k)]);
-}
-
-// Unit normal by the winding (outward for the closed meshes of builtin_scenes.h, which wind counter-clockwise).
-template <class T> Vec3<T> winding_normal(const Scene& s, std::size_t triangle) {
-    const Vec3<T> a = corner<T>(s, triangle, 0), b = corner<T>(s, triangle, 1), c = corner<T>(s, triangle, 2);
-    return glm::normalize(glm::cross(b - a, c - a));
-}
-
-template <class T> Vec3<T> random_unit(std::mt19937& rng) {
-    std::normal_distribution<double> gauss;
-    for (;;) {
-        const glm::dvec3 v(gauss(rng), gauss(rng), gauss(rng));
-        const double len = glm::length(v);
-        if (len > 1e-6) return Vec3<T>(v / len);
-    }
-}
-
-// A random unit direction on the outer side of every plane in `normals` (dot > min_cos with each): a ray coming
-// from there towards a point where these faces meet enters a convex solid there instead of grazing it.
-template <class T> Vec3<T> direction_outside(const std::vector<Vec3<T>>& normals, T min_cos, std::mt19937& rng) {
-    Vec3<T> mean(0);
-    for (const Vec3<T>& n : normals) mean += n;
-    mean = glm::normalize(mean);
-    for (int tries = 0; tries < 10000; ++tries) {
-        const Vec3<T> d = glm::normalize(mean + T(0.9) * random_unit<T>(rng));
-        bool outside = true;
-        for (const Vec3<T>& n : normals) outside = outside && glm::dot(d, n) > min_cos;
-        if (outside) return d;
-    }
-    return mean;
-}
-
-// A ray from `distance` away along `from` aimed exactly at `target`, as exactly as T allows: the direction is
-// computed in double from the origin as rounded to T.
-template <class T> Ray<T> ray_aimed_at(const Vec3<T>& target, const Vec3<T>& from, T distance) {
-    Ray<T> ray;
-    ray.origin = Vec3<T>(glm::dvec3(target) + glm::dvec3(from) * double(distance));
-    ray.direction = Vec3<T>(glm::normalize(glm::dvec3(target) - glm::dvec3(ray.origin)));
-    return ray;
-}
-
-// Random barycentrics kept a little away from the edges: (w, u, v) with each >= 0.05.
-glm::dvec3 interior_barycentrics(std::mt19937& rng) {
-    std::exponential_distribution<double> e;
-    glm::dvec3 b(e(rng), e(rng), e(rng));
-    b /= b.x + b.y + b.z;
-    return 0.85 * b + glm::dvec3(0.05);
-}
-
-// ---------------------------------------------------------------------------------------------------------------
 // Watertightness.
-
-using PositionKey = std::array<float, 3>;
-PositionKey key_of(const glm::vec3& p) { return {p.x, p.y, p.z}; }
-
-// The vertices and edges of a triangle soup, matched by exact position, with the triangles around each.
-struct MeshTopology {
-    std::map<PositionKey, std::vector<std::size_t>> vertices;
-    std::map<std::pair<PositionKey, PositionKey>, std::vector<std::size_t>> edges;   // (smaller, larger) key
-    bool closed() const {
-        for (const auto& [edge, triangles] : edges)
-            if (triangles.size() != 2) return false;
-        return !edges.empty();
-    }
-};
-
-MeshTopology topology_of(const Scene& s) {
-    MeshTopology topo;
-    for (std::size_t t = 0; t < s.triangle_count(); ++t)
-        for (int k = 0; k < 3; ++k) {
-            const PositionKey a = key_of(s.positions[3 * t + std::size_t(k)]);
-            const PositionKey b = key_of(s.positions[3 * t + std::size_t((k + 1) % 3)]);
-            topo.vertices[a].push_back(t);
-            topo.edges[a < b ? std::make_pair(a, b) : std::make_pair(b, a)].push_back(t);
-        }
-    return topo;
-}
-
-// Rays from outside a closed convex mesh aimed exactly at each shared vertex (directions_per_vertex of them) and at
-// points on each shared edge: its midpoint and random fractions along it (each from directions_per_point
-// directions). Each comes from the outer side of every face around its target, so in exact arithmetic it enters the
-// solid there: a closed, watertight test cannot miss it. The origins lie from 1 to 10^4 mesh sizes away (log-uniform):
-// the rounding error of Moller-Trumbore's edge tests grows with the distance from the origin to the triangle (Embree's
-// verify test puts its plane at 1e5 for the same reason).
-template <class T>
-std::vector<Ray<T>> rays_at_shared_vertices_and_edges(const Scene& s, int directions_per_vertex, int points_per_edge,
-                                                      int directions_per_point, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> fraction(0.0, 1.0), log_distance(0.0, 4.0);
-    const T size = T(s.bounds.diagonal());
-    auto distance = [&](std::mt19937& r) { return std::pow(10.0, log_distance(r)); };
-    const MeshTopology topo = topology_of(s);
-    auto normals_of = [&](const std::vector<std::size_t>& triangles) {
-        std::vector<Vec3<T>> normals;
-        for (std::size_t t : triangles) normals.push_back(winding_normal<T>(s, t));
-        return normals;
-    };
-    std::vector<Ray<T>> rays;
-    for (const auto& [position, triangles] : topo.vertices) {
-        const Vec3<T> target{T(position[0]), T(position[1]), T(position[2])};
-        const std::vector<Vec3<T>> normals = normals_of(triangles);
-        for (int i = 0; i < directions_per_vertex; ++i)
-            rays.push_back(ray_aimed_at(target, direction_outside(normals, T(0.05), rng), size * T(distance(rng))));
-    }
-    for (const auto& [edge, triangles] : topo.edges) {
-        const Vec3<T> a{T(edge.first[0]), T(edge.first[1]), T(edge.first[2])};
-        const Vec3<T> b{T(edge.second[0]), T(edge.second[1]), T(edge.second[2])};
-        const std::vector<Vec3<T>> normals = normals_of(triangles);
-        for (int i = 0; i < points_per_edge; ++i) {
-            const T f = i == 0 ? T(0.5) : T(fraction(rng));
-            const Vec3<T> target = a + f * (b - a);
-            for (int j = 0; j < directions_per_point; ++j)
-                rays.push_back(ray_aimed_at(target, direction_outside(normals, T(0.05), rng), size * T(distance(rng))));
-        }
-    }
-    return rays;
-}
 
 struct MissCount {
     std::size_t rays = 0;
@@ -238,14 +91,14 @@ template <class T> MissCount count_misses(const Scene& s, const std::vector<Ray<
 
 // Runs the shared-vertex/edge rays in float and double; watertight must never miss, Moller's misses are reported.
 // Returns Moller's misses in float (the precision the renders use).
-std::size_t expect_no_watertight_misses(const char* mesh, const Scene& s, int directions_per_vertex,
-                                        int points_per_edge, int directions_per_point) {
+std::size_t expect_no_watertight_misses(const char* mesh, const Scene& s, const WatertightRayCounts& counts) {
+    const auto [directions_per_vertex, points_per_edge, directions_per_point] = counts;
     const MeshTopology topo = topology_of(s);
     EXPECT_TRUE(topo.closed()) << mesh << " is not closed: the case needs every edge shared by exactly two triangles";
     const MissCount f = count_misses(s, rays_at_shared_vertices_and_edges<float>(
-                                            s, directions_per_vertex, points_per_edge, directions_per_point, 7));
+                                            s, directions_per_vertex, points_per_edge, directions_per_point, kWatertightSeed));
     const MissCount d = count_misses(s, rays_at_shared_vertices_and_edges<double>(
-                                            s, directions_per_vertex, points_per_edge, directions_per_point, 7));
+                                            s, directions_per_vertex, points_per_edge, directions_per_point, kWatertightSeed));
     std::printf("[ watertight ] %s (%zu triangles, %zu shared vertices, %zu shared edges), rays aimed exactly at "
                 "them:\n"
                 "               float:  %zu rays, Moller misses %zu (rate %.2e), watertight misses %zu (rate %.2e)\n"
@@ -267,28 +120,15 @@ std::size_t expect_no_watertight_misses(const char* mesh, const Scene& s, int di
     return f.misses[int(IntersectMethod::Moller)];
 }
 
-// The sphere of the Whitted scene's tessellation (48 x 24, shared seam column and pole vertices), turned and moved
-// off the axes so that no coordinate is special.
-Scene closed_sphere() {
-    return flatten_without_light(asset_of({make_uv_sphere({0, 0, 0}, 1.0f, 48, 24, 0)}, {0.37f, 1.1f, -0.6f},
-                                          glm::angleAxis(0.6f, glm::normalize(glm::vec3(1, 2, 3)))));
-}
-
-Scene closed_cube() {
-    const glm::quat turn = glm::angleAxis(0.9f, glm::normalize(glm::vec3(-2, 1, 3)));
-    return flatten_without_light(
-        asset_of({make_box({-0.37f, 0.11f, -1.3f}, {0.52f, 0.93f, -0.21f}, 0)}, {0.2f, -0.3f, 0.45f}, turn));
-}
-
 TEST(Watertight, RaysThroughSharedVerticesAndEdgesOfAClosedSphereNeverMiss) {
-    const std::size_t moller_misses = expect_no_watertight_misses("UV sphere 48x24", closed_sphere(), 4, 3, 2);
+    const std::size_t moller_misses = expect_no_watertight_misses("UV sphere 48x24", closed_sphere(), kSphereRays);
     // The rays are hard: Moller-Trumbore, whose edge tests round differently in the two triangles of an edge, lets
     // some of them through (the count is deterministic for this seed; it only has to be non-zero).
     EXPECT_GT(moller_misses, 0u) << "the rays no longer exercise the shared edges";
 }
 
 TEST(Watertight, RaysThroughSharedVerticesAndEdgesOfACubeSplitIntoTrianglesNeverMiss) {
-    const std::size_t moller_misses = expect_no_watertight_misses("cube of 12 triangles", closed_cube(), 400, 200, 8);
+    const std::size_t moller_misses = expect_no_watertight_misses("cube of 12 triangles", closed_cube(), kCubeRays);
     EXPECT_GT(moller_misses, 0u) << "the rays no longer exercise the shared edges";
 }
 
@@ -326,20 +166,6 @@ TEST(Watertight, AgreesWithMollerOnOrdinaryRays) {
 // ---------------------------------------------------------------------------------------------------------------
 // Self-intersection.
 
-// One float unit in the last place at magnitude x.
-double ulp_at(double x) {
-    const float f = float(std::abs(x));
-    return double(std::nextafter(f, kInf) - f);
-}
-
-// The most the robust offset moves a coordinate of magnitude x (offset.h): int_scale ulps, or float_scale near the
-// origin.
-double robust_offset_bound(double x) {
-    return std::abs(x) < double(RobustOffsetConstants<float>::origin)
-               ? double(RobustOffsetConstants<float>::float_scale)
-               : double(RobustOffsetConstants<float>::int_scale) * ulp_at(x);
-}
-
 struct Tally {
     std::size_t rays = 0, failures = 0;
     void add(bool failed) { ++rays; failures += failed ? 1 : 0; }
@@ -364,8 +190,7 @@ struct SpawnTallies {
 //   leaving     refracted out again at the far side             must hit nothing
 template <class T>
 SpawnTallies spawn_from_sphere(OffsetMethod method, double offset, double scale, int primaries, unsigned seed) {
-    const Scene s =
-        flatten_without_light(asset_of({make_uv_sphere(glm::vec3(float(offset)), float(scale), 24, 12, 0)}));
+    const Scene s = sphere_at(offset, scale);
     const BruteForceTracer<T> tracer(s, IntersectMethod::Watertight);
     std::mt19937 rng(seed);
     std::uniform_int_distribution<std::size_t> pick(0, s.triangle_count() - 1);
@@ -409,14 +234,9 @@ SpawnTallies spawn_from_sphere(OffsetMethod method, double offset, double scale,
     return tally;
 }
 
-// A scene at `offset` of size `scale` is only meaningful in float when the geometry spans many float steps: the
-// sphere's radius must hold at least 1024 ulps of its coordinates (then the robust offset, a few ulps, stays
-// far below the radius). Smaller scenes far out cannot even be modelled in float.
-bool sphere_representable(double offset, double scale) { return scale >= 1024.0 * ulp_at(offset + scale); }
-
 TEST(SelfIntersection, SpawnedRaysNeverRehitTheirSurfaceAtAnyOffsetOrScale) {
-    const double offsets[] = {1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6};
-    const double scales[] = {1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3};
+    const auto& offsets = kPlacementOffsets;
+    const auto& scales = kPlacementScales;
     const int primaries = 300;
     std::printf("[ self-hits ] failure rate of spawned shadow/reflection/refraction rays off a sphere of radius SCALE "
                 "at (OFFSET, OFFSET, OFFSET), float; epsilon = %g; '-' = not representable in float\n"
@@ -431,7 +251,7 @@ TEST(SelfIntersection, SpawnedRaysNeverRehitTheirSurfaceAtAnyOffsetOrScale) {
                 std::printf("  %15s", "-");
                 continue;
             }
-            const unsigned seed = unsigned(std::hash<double>()(offset * 31.0 + scale));
+            const unsigned seed = sphere_seed(offset, scale);
             for (OffsetMethod method : kOffsets) {
                 const SpawnTallies f = spawn_from_sphere<float>(method, offset, scale, primaries, seed);
                 const SpawnTallies d = spawn_from_sphere<double>(method, offset, scale, primaries, seed);
@@ -473,10 +293,7 @@ TEST(SelfIntersection, SpawnedRaysNeverRehitTheirSurfaceAtAnyOffsetOrScale) {
 // below the bottom face: it escapes, and light leaks through the wall. Counts the rays that are not.
 template <class T>
 Tally leaks_through_thin_wall(OffsetMethod method, double offset, double scale, int rays, unsigned seed) {
-    const float half = float(scale / 2), half_thickness = float(0.025 * scale);
-    const glm::vec3 c{float(offset)};
-    const Scene s = flatten_without_light(
-        asset_of({make_box(c - glm::vec3(half, half_thickness, half), c + glm::vec3(half, half_thickness, half), 0)}));
+    const Scene s = thin_slab_at(offset, scale);
     float bottom = kInf, top = -kInf;
     for (const glm::vec3& p : s.positions) bottom = std::min(bottom, p.y), top = std::max(top, p.y);
     auto on_plane = [&](std::int32_t triangle, float y) {
@@ -508,8 +325,8 @@ Tally leaks_through_thin_wall(OffsetMethod method, double offset, double scale, 
 }
 
 TEST(SelfIntersection, RaysIntoAThinWallAreStoppedByItsOtherFace) {
-    const double offsets[] = {0.0, 1.0, 1e2, 1e4};
-    const double scales[] = {1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3};
+    const auto& offsets = kWallOffsets;
+    const auto& scales = kPlacementScales;
     std::printf("[ thin wall ] rays refracted into a slab 0.05*SCALE thick at OFFSET that escape through its far face, "
                 "float; epsilon = %g; '-' = wall thinner than the robust offset: no float offset helps\n"
                 "  offset \\ scale", double(kDefaultEpsilon));
@@ -519,11 +336,11 @@ TEST(SelfIntersection, RaysIntoAThinWallAreStoppedByItsOtherFace) {
     for (double offset : offsets) {
         std::printf("  %-13.0e  ", offset);
         for (double scale : scales) {
-            if (0.05 * scale <= robust_offset_bound(offset + scale)) {
+            if (!wall_representable(offset, scale)) {
                 std::printf("  %15s", "-");
                 continue;
             }
-            const unsigned seed = unsigned(std::hash<double>()(offset * 17.0 + scale));
+            const unsigned seed = wall_seed(offset, scale);
             const Tally e = leaks_through_thin_wall<float>(OffsetMethod::Epsilon, offset, scale, 200, seed);
             const Tally r = leaks_through_thin_wall<float>(OffsetMethod::Robust, offset, scale, 200, seed);
             const Tally rd = leaks_through_thin_wall<double>(OffsetMethod::Robust, offset, scale, 200, seed);
@@ -660,35 +477,6 @@ TEST(ShadingNormals, NormalsFacingAwayFromTheRayAreTurnedTowardsIt) {
 
 // ---------------------------------------------------------------------------------------------------------------
 // Inputs.
-
-template <class T> struct TriangleCase {
-    const char* name;
-    Vec3<T> a, b, c;
-};
-
-template <class T> std::vector<TriangleCase<T>> broken_triangles() {
-    const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
-    return {
-        {"three equal vertices", {0.2, 0.3, 0}, {0.2, 0.3, 0}, {0.2, 0.3, 0}},
-        {"two equal vertices", {0, 0, 0}, {1, 1, 0}, {1, 1, 0}},
-        {"NaN vertex", {0, 0, 0}, {1, 0, 0}, {nan, 1, 0}},
-        {"+Inf vertex", {0, 0, 0}, {inf, 0, 0}, {0, 1, 0}},
-        {"-Inf vertex", {0, 0, 0}, {1, 0, 0}, {0, -inf, 0}},
-        {"all Inf", {inf, inf, inf}, {-inf, inf, 0}, {inf, -inf, -inf}},
-    };
-}
-
-template <class T> std::vector<std::pair<const char*, Ray<T>>> broken_rays() {
-    const T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
-    return {
-        {"NaN direction", Ray<T>{{0.2, 0.2, 1}, {nan, 0, -1}}},
-        {"all-NaN direction", Ray<T>{{0.2, 0.2, 1}, {nan, nan, nan}}},
-        {"zero direction", Ray<T>{{0.2, 0.2, 1}, {0, 0, 0}}},
-        {"Inf direction", Ray<T>{{0.2, 0.2, 1}, {0, 0, -inf}}},
-        {"NaN origin", Ray<T>{{nan, 0.2, 1}, {0, 0, -1}}},
-        {"Inf origin", Ray<T>{{0.2, 0.2, inf}, {0, 0, -1}}},
-    };
-}
 
 template <class T> void expect_broken_inputs_never_hit() {
     const Vec3<T> a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);   // a valid triangle
