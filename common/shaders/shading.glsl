@@ -180,7 +180,8 @@ vec3 shade_light(SurfaceCoefficients s, vec3 incidence, vec3 n, vec3 to_light, v
     if (s.smoothness > 0.0) {
         precise vec3 half_vector = to_light + to_eye;
         const vec3 h = rt_normalize(half_vector);
-        const float nh = max(rt_dot(n, h), 0.0);
+        const float cos_h = rt_dot(n, h);
+        const float nh = cos_h > 0.0 ? cos_h : 0.0;   // also 0 for NaN (eye exactly opposite the light: h = 0)
         brdf += s.specular * ((s.shininess + 8.0) / (8.0 * RT_PI)) * pow(nh, s.shininess);
     }
     precise vec3 r = brdf * incidence;

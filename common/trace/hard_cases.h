@@ -205,9 +205,9 @@ constexpr unsigned kWatertightSeed = 7;
 // ---------------------------------------------------------------------------------------------------------------
 // Placement at an offset and a scale.
 
-constexpr double kPlacementOffsets[] = {1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6};          // sphere centres (OFFSET, OFFSET, OFFSET)
-constexpr double kPlacementScales[] =  {1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3};     // sphere radii / slab widths
-constexpr double kWallOffsets[] =       {0.0, 1.0, 1e2, 1e4};                  // thin-wall slab centres
+constexpr double kPlacementOffsets[] = {1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6};        // sphere centres (OFFSET x 3)
+constexpr double kPlacementScales[] = {1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3};   // sphere radii, slab widths
+constexpr double kWallOffsets[] = {0.0, 1.0, 1e2, 1e4};                         // thin-wall slab centres
 
 // One float unit in the last place at magnitude x.
 inline double ulp_at(double x) {

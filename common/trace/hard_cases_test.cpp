@@ -96,9 +96,11 @@ std::size_t expect_no_watertight_misses(const char* mesh, const Scene& s, const 
     const MeshTopology topo = topology_of(s);
     EXPECT_TRUE(topo.closed()) << mesh << " is not closed: the case needs every edge shared by exactly two triangles";
     const MissCount f = count_misses(s, rays_at_shared_vertices_and_edges<float>(
-                                            s, directions_per_vertex, points_per_edge, directions_per_point, kWatertightSeed));
+                                            s, directions_per_vertex, points_per_edge, directions_per_point,
+                                            kWatertightSeed));
     const MissCount d = count_misses(s, rays_at_shared_vertices_and_edges<double>(
-                                            s, directions_per_vertex, points_per_edge, directions_per_point, kWatertightSeed));
+                                            s, directions_per_vertex, points_per_edge, directions_per_point,
+                                            kWatertightSeed));
     std::printf("[ watertight ] %s (%zu triangles, %zu shared vertices, %zu shared edges), rays aimed exactly at "
                 "them:\n"
                 "               float:  %zu rays, Moller misses %zu (rate %.2e), watertight misses %zu (rate %.2e)\n"

@@ -103,7 +103,8 @@ glm::vec3 shade_light(const SurfaceCoefficients& s, const glm::vec3& incidence, 
     glm::vec3 brdf = s.diffuse / kPi;
     if (s.smoothness > 0.0f) {
         const glm::vec3 h = glm::normalize(to_light + to_eye);
-        const float nh = std::max(glm::dot(n, h), 0.0f);
+        const float cos_h = glm::dot(n, h);
+        const float nh = cos_h > 0.0f ? cos_h : 0.0f;   // also 0 for NaN (eye exactly opposite the light: h = 0)
         // Normalised Blinn-Phong: (e + 8) / (8 pi) keeps the lobe's energy roughly constant as it sharpens.
         brdf += s.specular * ((s.shininess + 8.0f) / (8.0f * kPi)) * std::pow(nh, s.shininess);
     }

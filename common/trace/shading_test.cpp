@@ -138,6 +138,17 @@ TEST(Lights, DirectionalLightIsIrradianceTimesCosine) {
     EXPECT_TRUE(std::isinf(dist));
 }
 
+TEST(Lights, EyeExactlyOppositeTheLightGivesAFiniteHighlight) {
+    Material m;
+    m.metallic = 0.0f;
+    m.roughness = 0.2f;
+    const SurfaceCoefficients s = surface_coefficients(m, glm::vec4(1.0f));
+    const glm::vec3 n(0, 0, 1), to_light(0, 0, 1), to_eye(0, 0, -1);   // half vector 0
+    const glm::vec3 c = shade_light(s, glm::vec3(1.0f), n, to_light, to_eye);
+    EXPECT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+    EXPECT_NEAR(c.x, s.diffuse.x / kPi, 1e-7f);   // the diffuse term alone
+}
+
 TEST(Textures, NearestRepeatsAndDecodesSrgb) {
     Texture t;
     t.width = 2;
