@@ -5,9 +5,9 @@
 #include <CLI/CLI.hpp>
 
 #include "common/app/pixel_samples.h"
+#include "common/gpu/gbuffer.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/wavefront.h"
-#include "gbuffer.h"
 
 namespace rt {
 
@@ -26,28 +26,8 @@ gpu::Traversal brute_force_traversal() { return {"02_raster_hybrid/brute_force.g
 
 struct HybridRenderer::Gpu {
     gpu::GpuScene scene;
-    GBuffer gbuffer;
+    gpu::GBuffer gbuffer;
     gpu::Wavefront wavefront{brute_force_traversal()};
-    gpu::Program primary_hits;
-    std::string primary_hits_key;
-    // Pass 2: turns the G-buffer into the pipeline's primary hits (compiled with the pipeline's defines).
-    void rasterized_primary_hits(const RenderSettings& settings, glm::vec2 offset) {
-        std::string key;
-        for (const auto& [k, v] : wavefront.defines()) key.append(k).append("=").append(v).append(";");
-        if (key != primary_hits_key) {
-            primary_hits = gpu::Program::compute("02_raster_hybrid/primary_hits.comp", wavefront.defines());
-            primary_hits_key = key;
-        }
-        wavefront.set_uniforms(primary_hits);
-        primary_hits.set("wf_sample_offset", offset);
-        wavefront.begin_primary_hits(std::size_t(settings.width) * std::size_t(settings.height));
-        glBindTextureUnit(gpu::kWavefrontFirstFreeTextureUnit, gbuffer.triangle_id_texture());
-        const glm::uvec3 local = primary_hits.local_size();
-        primary_hits.dispatch((unsigned(settings.width) + local.x - 1) / local.x,
-                              (unsigned(settings.height) + local.y - 1) / local.y);
-        wavefront.record_pass("primary_hits");
-        gpu::check_gl("primary hits pass");
-    }
 };
 
 HybridRenderer::HybridRenderer() = default;
@@ -99,7 +79,7 @@ FrameResult HybridRenderer::render(const Scene& scene, const RenderSettings& set
         // Passes 2..n: primary hits, then shading and the secondary rays, bounce by bounce.
         start = Clock::now();
         g.scene.bind();
-        g.rasterized_primary_hits(settings, offset);
+        g.gbuffer.push_primary_hits(g.wavefront, settings.width, settings.height, offset);
         g.wavefront.shade_sample();
         glFinish();
         trace_ms += ms_since(start);
@@ -115,7 +95,7 @@ FrameResult HybridRenderer::render(const Scene& scene, const RenderSettings& set
     for (const auto& [k, v] : g.wavefront.defines()) defines[k] = v;
     result.extra["shader_defines"] = defines;
     std::vector<std::string> programs = g.wavefront.programs();
-    programs.push_back("02_raster_hybrid/primary_hits.comp");
+    programs.push_back("raster/primary_hits.comp");
     result.extra["programs"] = programs;
 
     if (context_.is_window()) closed_ = !window_.present(context_, result.image, gpu_options.screenshot);

@@ -14,7 +14,7 @@
 #include "common/gpu/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
-#include "gbuffer.h"
+#include "common/gpu/gbuffer.h"
 #include "hybrid_renderer.h"
 
 namespace rt {
@@ -36,7 +36,7 @@ TEST_P(GBufferVisibility, TriangleIdsEqualPrimaryHitsOfStage01) {
     const Scene scene = builtin(GetParam(), width, height);
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
-    GBuffer gbuffer;
+    gpu::GBuffer gbuffer;
     gbuffer.render(gpu_scene, scene.camera, scene.bounds, width, height, glm::vec2(0.5f));
     const std::vector<std::uint32_t> ids = gbuffer.read_triangle_ids();
 

@@ -437,7 +437,7 @@ Scene test_scene(Rng& rng) {
     scene.normals[6] = scene.normals[7] = scene.normals[8] = glm::vec3(0.0f);
     for (int i = 0; i < 3; ++i) {
         Material m;
-        m.name = "m" + std::to_string(i);
+        m.name = std::string(1, char('a' + i));   // (not "m" + to_string: GCC 12 -Wrestrict false positive)
         m.base_color = glm::vec4(rng.vec(0, 1), 1.0f);
         m.base_color_texture = i - 1;
         m.metallic = rng.uniform(0, 1);

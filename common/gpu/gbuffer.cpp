@@ -3,18 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
-namespace rt {
+namespace rt::gpu {
 
 GBuffer::GBuffer()
-    : program_(gpu::Program::from_files({{GL_VERTEX_SHADER, "02_raster_hybrid/gbuffer.vert"},
-                                         {GL_FRAGMENT_SHADER, "02_raster_hybrid/gbuffer.frag"}})) {
+    : program_(Program::from_files({{GL_VERTEX_SHADER, "raster/gbuffer.vert"},
+                                         {GL_FRAGMENT_SHADER, "raster/gbuffer.frag"}})) {
     // The vertices come straight from the scene's position buffer (vec4 per vertex, 3 per triangle).
     glCreateVertexArrays(1, &vao_);
     glEnableVertexArrayAttrib(vao_, 0);
     glVertexArrayAttribFormat(vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao_, 0, 0);
     glCreateFramebuffers(1, &fbo_);
-    gpu::check_gl("GBuffer: create");
+    check_gl("GBuffer: create");
 }
 
 GBuffer::~GBuffer() {
@@ -40,12 +40,12 @@ void GBuffer::resize(int width, int height) {
     glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
     glNamedFramebufferDrawBuffer(fbo_, GL_COLOR_ATTACHMENT0);
     if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw gpu::GlError("GBuffer: incomplete framebuffer");
+        throw GlError("GBuffer: incomplete framebuffer");
     width_ = width;
     height_ = height;
 }
 
-void GBuffer::render(const gpu::GpuScene& scene, const Camera& camera, const Bounds& bounds, int width, int height,
+void GBuffer::render(const GpuScene& scene, const Camera& camera, const Bounds& bounds, int width, int height,
                      glm::vec2 offset) {
     resize(width, height);
     const bool ortho = camera.projection == Projection::Orthographic;
@@ -93,14 +93,31 @@ void GBuffer::render(const gpu::GpuScene& scene, const Camera& camera, const Bou
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     // The compute pass that reads the ids must see them.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    gpu::check_gl("G-buffer pass");
+    check_gl("G-buffer pass");
 }
 
 std::vector<std::uint32_t> GBuffer::read_triangle_ids() const {
     std::vector<std::uint32_t> ids(std::size_t(width_) * std::size_t(height_));
     glGetTextureImage(ids_, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(ids.size() * sizeof(std::uint32_t)), ids.data());
-    gpu::check_gl("GBuffer: read triangle ids");
+    check_gl("GBuffer: read triangle ids");
     return ids;
 }
 
-}  // namespace rt
+void GBuffer::push_primary_hits(Wavefront& wavefront, int width, int height, glm::vec2 offset) {
+    std::string key;
+    for (const auto& [k, v] : wavefront.defines()) key.append(k).append("=").append(v).append(";");
+    if (key != primary_hits_key_) {
+        primary_hits_ = Program::compute("raster/primary_hits.comp", wavefront.defines());
+        primary_hits_key_ = key;
+    }
+    wavefront.set_uniforms(primary_hits_);
+    primary_hits_.set("wf_sample_offset", offset);
+    wavefront.begin_primary_hits(std::size_t(width) * std::size_t(height));
+    glBindTextureUnit(kWavefrontFirstFreeTextureUnit, ids_);
+    const glm::uvec3 local = primary_hits_.local_size();
+    primary_hits_.dispatch((unsigned(width) + local.x - 1) / local.x, (unsigned(height) + local.y - 1) / local.y);
+    wavefront.record_pass("primary_hits");
+    check_gl("primary hits pass");
+}
+
+}  // namespace rt::gpu

@@ -1,0 +1,52 @@
+// Rasterized primary visibility, the first pass of the stages that rasterize instead of tracing primary rays
+// (02, and the ray-hierarchy stages 04-05, after Roger, Assarsson & Holzschuch 2007 and Reis):
+//  1. render(): rasterize the scene into a G-buffer. Each pixel gets the index of the nearest triangle at its sample
+//     position (R32UI, triangle + 1, 0 = none) and its depth (32-bit float, reversed). That is exactly what a
+//     primary ray through the pixel would find, for the price of one draw call (shaders raster/gbuffer.vert, .frag).
+//  2. push_primary_hits(): turn each pixel into a primary hit of the wavefront pipeline (raster/primary_hits.comp).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "../scene/scene.h"
+#include "gpu_scene.h"
+#include "shader.h"
+#include "wavefront.h"
+
+namespace rt::gpu {
+
+class GBuffer {
+public:
+    GBuffer();   // needs a current GL context
+    GBuffer(const GBuffer&) = delete;
+    GBuffer& operator=(const GBuffer&) = delete;
+    ~GBuffer();
+
+    // Rasterizes the uploaded scene as `camera` sees it into a width x height G-buffer, each pixel sampled at
+    // `offset` inside it (0.5, 0.5 = the centre). `bounds` places the near/far planes.
+    void render(const GpuScene& scene, const Camera& camera, const Bounds& bounds, int width, int height,
+                glm::vec2 offset);
+
+    // Triangle index + 1 per pixel (0 = none), row 0 at the top. Waits for the GPU.
+    std::vector<std::uint32_t> read_triangle_ids() const;
+    GLuint triangle_id_texture() const { return ids_; }
+
+    // Pass 2: the pixels of the G-buffer become the pipeline's primary hits (the camera ray of each pixel
+    // intersected with its triangle, so barycentrics match the CPU's); empty pixels add the background. Compiled
+    // with the pipeline's defines. The pipeline's begin_frame() must have run and the scene must be bound.
+    void push_primary_hits(Wavefront& wavefront, int width, int height, glm::vec2 offset);
+
+private:
+    void resize(int width, int height);
+    Program program_;
+    Program primary_hits_;
+    std::string primary_hits_key_;
+    GLuint vao_ = 0, fbo_ = 0, ids_ = 0, depth_ = 0;
+    int width_ = 0, height_ = 0;
+};
+
+}  // namespace rt::gpu
