@@ -196,21 +196,6 @@ void test_main() {
 }
 )";
 
-struct Tally {
-    std::size_t rays = 0, failures = 0;
-    void add(bool failed) { ++rays; failures += failed ? 1 : 0; }
-    double rate() const { return rays ? double(failures) / double(rays) : 0.0; }
-};
-
-struct SpawnTallies {
-    Tally shadow, reflection, refraction_in, refraction_out;
-    std::size_t failures() const {
-        return shadow.failures + reflection.failures + refraction_in.failures + refraction_out.failures;
-    }
-    std::size_t rays() const { return shadow.rays + reflection.rays + refraction_in.rays + refraction_out.rays; }
-    double rate() const { return rays() ? double(failures()) / double(rays()) : 0.0; }
-};
-
 // The CPU suite's primaries (spawn_from_sphere in hard_cases_test.cpp): aimed at random interior points of random
 // triangles of the sphere from outside. Returns the tallies of both offset methods (0 epsilon, 1 robust).
 std::array<SpawnTallies, 2> glsl_spawn_from_sphere(GlslTestHarness& h, GpuScene& gpu, double offset, double scale,
@@ -218,15 +203,9 @@ std::array<SpawnTallies, 2> glsl_spawn_from_sphere(GlslTestHarness& h, GpuScene&
     const Scene s = sphere_at(offset, scale);
     gpu.upload(s);
     std::mt19937 rng(sphere_seed(offset, scale));
-    std::uniform_int_distribution<std::size_t> pick(0, s.triangle_count() - 1);
     Words in;
     for (int i = 0; i < primaries; ++i) {
-        const std::size_t t = pick(rng);
-        const glm::dvec3 b = interior_barycentrics(rng);
-        const glm::vec3 target = float(b.x) * corner<float>(s, t, 0) + float(b.y) * corner<float>(s, t, 1) +
-                                 float(b.z) * corner<float>(s, t, 2);
-        const Ray<float> primary = ray_aimed_at(
-            target, direction_outside<float>({winding_normal<float>(s, t)}, 0.2f, rng), float(3 * scale));
+        const Ray<float> primary = primary_ray_at_random_triangle<float>(s, scale, rng).ray;
         in << primary.origin << primary.direction << random_unit<float>(rng) << float(scale);
     }
     const std::vector<std::uint32_t> out = h.run(in.words, std::size_t(primaries), 10, 15, [&] { gpu.bind(); });

@@ -287,4 +287,35 @@ template <class T> std::vector<std::pair<const char*, Ray<T>>> broken_rays() {
     };
 }
 
+// Counts of spawned rays and of those that failed (re-hit their surface, or leaked), per kind.
+struct Tally {
+    std::size_t rays = 0, failures = 0;
+    void add(bool failed) { ++rays; failures += failed ? 1 : 0; }
+    double rate() const { return rays ? double(failures) / double(rays) : 0.0; }
+};
+
+struct SpawnTallies {
+    Tally shadow, reflection, refraction_in, refraction_out;
+    std::size_t failures() const {
+        return shadow.failures + reflection.failures + refraction_in.failures + refraction_out.failures;
+    }
+    std::size_t rays() const { return shadow.rays + reflection.rays + refraction_in.rays + refraction_out.rays; }
+    double rate() const { return rays() ? double(failures()) / double(rays()) : 0.0; }
+};
+
+// A primary ray from outside aimed at a random interior point of a random triangle of `s` (a closed mesh of size
+// `scale`), coming from within 78 degrees of the triangle's normal, starting 3 * scale away.
+template <class T> struct AimedRay {
+    Ray<T> ray;
+    std::size_t triangle;       // the triangle it is aimed at
+    glm::dvec3 barycentrics;    // the point aimed at, in that triangle
+};
+template <class T> AimedRay<T> primary_ray_at_random_triangle(const Scene& s, double scale, std::mt19937& rng) {
+    std::uniform_int_distribution<std::size_t> pick(0, s.triangle_count() - 1);
+    const std::size_t t = pick(rng);
+    const glm::dvec3 b = interior_barycentrics(rng);
+    const Vec3<T> target = T(b.x) * corner<T>(s, t, 0) + T(b.y) * corner<T>(s, t, 1) + T(b.z) * corner<T>(s, t, 2);
+    return {ray_aimed_at(target, direction_outside<T>({winding_normal<T>(s, t)}, T(0.2), rng), T(3 * scale)), t, b};
+}
+
 }  // namespace rt::hard_cases

@@ -137,15 +137,11 @@ TEST(Watertight, RaysThroughSharedVerticesAndEdgesOfACubeSplitIntoTrianglesNever
 // Away from edges the two tests are the same mathematics: same triangle, same t, u, v to rounding.
 template <class T> void expect_methods_agree_on_ordinary_rays(const Scene& s, int rays, unsigned seed) {
     std::mt19937 rng(seed);
-    std::uniform_int_distribution<std::size_t> pick(0, s.triangle_count() - 1);
     const BruteForceTracer<T> moller(s, IntersectMethod::Moller), watertight(s, IntersectMethod::Watertight);
     const double tol = sizeof(T) == sizeof(float) ? 1e-5 : 1e-12;   // relative, a few hundred ulps of the precision
     RayCounters counters;
     for (int i = 0; i < rays; ++i) {
-        const std::size_t t = pick(rng);
-        const glm::dvec3 b = interior_barycentrics(rng);
-        const Vec3<T> target = T(b.x) * corner<T>(s, t, 0) + T(b.y) * corner<T>(s, t, 1) + T(b.z) * corner<T>(s, t, 2);
-        const Ray<T> ray = ray_aimed_at(target, direction_outside<T>({winding_normal<T>(s, t)}, T(0.2), rng), T(3));
+        const auto [ray, t, b] = primary_ray_at_random_triangle<T>(s, 1.0, rng);
         Hit<T> hm, hw;
         ASSERT_TRUE(moller.closest(ray, hm, counters)) << precision_name<T>() << " ray " << i;
         ASSERT_TRUE(watertight.closest(ray, hw, counters)) << precision_name<T>() << " ray " << i;
@@ -168,21 +164,6 @@ TEST(Watertight, AgreesWithMollerOnOrdinaryRays) {
 // ---------------------------------------------------------------------------------------------------------------
 // Self-intersection.
 
-struct Tally {
-    std::size_t rays = 0, failures = 0;
-    void add(bool failed) { ++rays; failures += failed ? 1 : 0; }
-    double rate() const { return rays ? double(failures) / double(rays) : 0.0; }
-};
-
-struct SpawnTallies {
-    Tally shadow, reflection, refraction_in, refraction_out;
-    std::size_t failures() const {
-        return shadow.failures + reflection.failures + refraction_in.failures + refraction_out.failures;
-    }
-    std::size_t rays() const { return shadow.rays + reflection.rays + refraction_in.rays + refraction_out.rays; }
-    double rate() const { return rays() ? double(failures()) / double(rays()) : 0.0; }
-};
-
 // A glass-like sphere of radius `scale` centred at (offset, offset, offset). Rays from outside hit it; from each hit
 // point the rays Whitted spawns leave with the origin offset_ray_origin() gives them (as Whitted's spawn_origin):
 //   shadow      towards a random direction above the surface   must hit nothing (the sphere is convex)
@@ -195,7 +176,6 @@ SpawnTallies spawn_from_sphere(OffsetMethod method, double offset, double scale,
     const Scene s = sphere_at(offset, scale);
     const BruteForceTracer<T> tracer(s, IntersectMethod::Watertight);
     std::mt19937 rng(seed);
-    std::uniform_int_distribution<std::size_t> pick(0, s.triangle_count() - 1);
     const T eps = T(kDefaultEpsilon), eta = T(1.5);
     RayCounters counters;
     SpawnTallies tally;
@@ -206,11 +186,7 @@ SpawnTallies spawn_from_sphere(OffsetMethod method, double offset, double scale,
         return r;
     };
     for (int i = 0; i < primaries; ++i) {
-        const std::size_t t = pick(rng);
-        const glm::dvec3 b = interior_barycentrics(rng);
-        const Vec3<T> target = T(b.x) * corner<T>(s, t, 0) + T(b.y) * corner<T>(s, t, 1) + T(b.z) * corner<T>(s, t, 2);
-        const Ray<T> primary =
-            ray_aimed_at(target, direction_outside<T>({winding_normal<T>(s, t)}, T(0.2), rng), T(3 * scale));
+        const Ray<T> primary = primary_ray_at_random_triangle<T>(s, scale, rng).ray;
         Hit<T> hit;
         if (!tracer.closest(primary, hit, counters)) continue;   // cannot happen (watertight); nothing to spawn
         const SurfacePoint<T> sp = surface_point(s, primary, hit);
