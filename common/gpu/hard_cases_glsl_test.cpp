@@ -482,21 +482,7 @@ void test_main() {
     EXPECT_GT(tir, 5u) << "total internal reflection was exercised";
 
     GlslTestHarness sh("hard_cases_shading_edges", R"(
-#include "shading.glsl"
-Material in_material(uint k) {
-    Material m;
-    m.base_color = in_vec4(k); m.emissive = in_vec3(k + 4u); m.base_color_texture = in_i(k + 7u);
-    m.specular_color = in_vec3(k + 8u); m.metallic = in_f(k + 11u);
-    m.roughness = in_f(k + 12u); m.transmission = in_f(k + 13u); m.ior = in_f(k + 14u); m.specular = in_f(k + 15u);
-    return m;
-}
-Light in_light(uint k) {
-    Light l;
-    l.color = in_vec3(k); l.type = in_i(k + 3u); l.position = in_vec3(k + 4u); l.intensity = in_f(k + 7u);
-    l.direction = in_vec3(k + 8u); l.range = in_f(k + 11u); l.inner_cone = in_f(k + 12u);
-    l.outer_cone = in_f(k + 13u); l.cos_inner = in_f(k + 14u); l.cos_outer = in_f(k + 15u);
-    return l;
-}
+#include "test_inputs.glsl"
 void test_main() {
     const SurfaceCoefficients s = surface_coefficients(in_material(0u), vec4(1.0));
     out_vec3(0, s.diffuse); out_vec3(3, s.specular); out_f(6, s.shininess); out_vec3(7, s.mirror);
