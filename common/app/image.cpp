@@ -54,6 +54,14 @@ bool is_supported_image_path(const std::string& path) {
 #endif
 }
 
+std::string supported_image_types() {
+#ifdef RT_PORTABLE
+    return ".png (portable build)";
+#else
+    return ".png, .jpg, .exr or .hdr";
+#endif
+}
+
 void write_image(const std::string& path, const Image& image) {
     if (!is_supported_image_path(path)) throw std::runtime_error("unsupported image type: " + path);
     const std::string ext = lower_extension(path);

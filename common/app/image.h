@@ -22,6 +22,8 @@ struct Image {
 
 // True when the extension is one this build can write (.png .jpg .jpeg .exr .hdr; .png only when portable).
 bool is_supported_image_path(const std::string& path);
+// The extensions this build writes, for messages: ".png, .jpg, .exr or .hdr" (".png" when portable).
+std::string supported_image_types();
 
 // Writes atomically (a temporary file in the same folder, then rename): a failure leaves no half-written file.
 // Throws std::runtime_error with a one-line message.

@@ -75,7 +75,7 @@ void validate_options(const Options& o) {
     check_output(o.stats, "--stats");
     check_output(o.export_path, "--export");
     if (!o.out.empty() && !is_supported_image_path(o.out))
-        throw std::invalid_argument("unsupported image type for --out: " + o.out + " (use .png, .jpg, .exr or .hdr)");
+        throw std::invalid_argument("unsupported image type for --out: " + o.out + " (use " + supported_image_types() + ")");
     if (!o.export_path.empty()) {
         const std::string ext = fs::path(o.export_path).extension().string();
         if (ext != ".gltf" && ext != ".glb") throw std::invalid_argument("--export needs a .gltf or .glb file: " + o.export_path);
