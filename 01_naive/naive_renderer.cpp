@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "brute_force_tracer.h"
+#include "common/app/options.h"
 #include "common/app/pixel_samples.h"
 #include "common/app/progress.h"
 #include "common/trace/whitted.h"
@@ -56,12 +57,8 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
 }  // namespace
 
 void NaiveRenderer::add_options(CLI::App& app) {
-    app.add_option("--precision", precision, "Arithmetic of the ray/triangle tests and hit points: float or double")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, Precision>{{"float", Precision::Float},
-                                                                             {"double", Precision::Double}},
-                                            CLI::ignore_case)
-                       .description("{float,double}"))
-        ->default_str("float");
+    add_enum(app, "--precision", precision, {{"float", Precision::Float}, {"double", Precision::Double}},
+             "Arithmetic of the ray/triangle tests and hit points");
 }
 
 std::string NaiveRenderer::renderer_name() const { return cpu_model_name(); }

@@ -3,25 +3,12 @@
 #include <filesystem>
 #include <map>
 #include <stdexcept>
+#include <vector>
 
 #include "../scene/effects.h"
 #include "image.h"
 
 namespace rt {
-
-namespace {
-
-template <class E>
-CLI::Option* add_enum(CLI::App& app, const std::string& name, E& value, const std::map<std::string, E>& names,
-                      const std::string& help) {
-    std::string choices;
-    for (const auto& [k, v] : names) choices += (choices.empty() ? "{" : ",") + k;
-    return app.add_option(name, value, help)
-        ->transform(CLI::CheckedTransformer(names, CLI::ignore_case).description(choices + "}"))
-        ->default_str([&] { for (auto& [k, v] : names) if (v == value) return k; return std::string(); }());
-}
-
-}  // namespace
 
 void add_shared_options(CLI::App& app, Options& o) {
     app.add_option("--scene", o.scene, "builtin:NAME (whitted, cornell, diffuse, dynamic, spheres:N, far) or a .gltf/.glb file")

@@ -1,7 +1,9 @@
 // The command line every stage shares (defined once here, with CLI11).
 #pragma once
 
+#include <map>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +22,24 @@ struct Options {
     double fps = 24.0;
     RenderSettings render;
 };
+
+// An option whose value is one of a few words, stored as an enum. Errors name the words: "--offset: wrong not in
+// {epsilon,robust}".
+template <class E>
+CLI::Option* add_enum(CLI::App& app, const std::string& name, E& value, const std::map<std::string, E>& names,
+                      const std::string& help) {
+    std::vector<std::string> words;
+    std::string current;
+    for (const auto& [word, v] : names) {
+        words.push_back(word);
+        if (v == value) current = word;
+    }
+    return app
+        .add_option_function<std::string>(
+            name, [&value, names](const std::string& word) { value = names.at(word); }, help)
+        ->transform(CLI::IsMember(words, CLI::ignore_case))   // also turns "MOLLER" into "moller"
+        ->default_str(current);
+}
 
 // Adds every shared option to `app`, bound to `options`.
 void add_shared_options(CLI::App& app, Options& options);
