@@ -26,8 +26,10 @@ bool material_reflects(const Material& m) {
 // Only the dielectric part of a material can transmit.
 bool material_transmits(const Material& m) { return m.transmission > 0.0f && m.metallic < 1.0f; }
 
-// Only materials used by at least one triangle count. Shadows are called for whenever a light shines on geometry: the
-// analysis is conservative and does not try to prove that nothing can occlude anything.
+// Only materials used by at least one triangle count. Shadows are called for whenever a light shines on geometry.
+// Proving that nothing can occlude is rarely possible: even a lone convex mesh shadows itself where its interpolated
+// normals face a light that its flat triangles face away from (near the terminator of a tessellated sphere), so the
+// only shadow-free scenes are those without a light or without triangles.
 Effects analyze_effects(const Scene& scene) {
     std::vector<bool> used(scene.materials.size(), false);
     for (std::uint32_t id : scene.material_ids)
