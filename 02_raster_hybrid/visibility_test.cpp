@@ -71,15 +71,20 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, GBufferVisibility,
                              return name;
                          });
 
-TEST(HybridRenderer, DiffuseSceneRunsAndCompilesNoReflectionOrRefraction) {
+// One 64x48 frame of a built-in scene through stage 02, with the effects the scene calls for.
+FrameResult render_64x48(const char* name) {
     gpu::test_context();
-    const Scene scene = builtin("diffuse", 64, 48);
+    const Scene scene = builtin(name, 64, 48);
     RenderSettings settings;
     settings.width = 64;
     settings.height = 48;
     settings.effects = analyze_effects(scene);
     HybridRenderer renderer;
-    const FrameResult result = renderer.render(scene, settings);
+    return renderer.render(scene, settings);
+}
+
+TEST(HybridRenderer, DiffuseSceneRunsAndCompilesNoReflectionOrRefraction) {
+    const FrameResult result = render_64x48("diffuse");
 
     const std::vector<std::string> passes = result.extra["passes"];
     EXPECT_EQ(passes, (std::vector<std::string>{"gbuffer", "primary_hits", "shade", "shadow", "resolve"}));
@@ -97,14 +102,7 @@ TEST(HybridRenderer, DiffuseSceneRunsAndCompilesNoReflectionOrRefraction) {
 }
 
 TEST(HybridRenderer, WhittedSceneRunsEveryPass) {
-    gpu::test_context();
-    const Scene scene = builtin("whitted", 64, 48);
-    RenderSettings settings;
-    settings.width = 64;
-    settings.height = 48;
-    settings.effects = analyze_effects(scene);
-    HybridRenderer renderer;
-    const FrameResult result = renderer.render(scene, settings);
+    const FrameResult result = render_64x48("whitted");
     const std::vector<std::string> passes = result.extra["passes"];
     EXPECT_EQ(passes, (std::vector<std::string>{"gbuffer", "primary_hits", "shade", "shadow", "trace", "resolve"}));
     EXPECT_GT(result.stats.counters.rays[int(RayKind::Reflection)], 0u);
