@@ -801,6 +801,7 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
         throw SceneError(prefix + one_line(e.reason));
     }
     asset.name = fs::path(path).stem().string();
+    asset.input_files.insert(asset.input_files.begin(), path);
     if (warnings) *warnings += loader.warnings;
     return asset;
 }

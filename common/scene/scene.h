@@ -143,6 +143,9 @@ struct SceneAsset {
     std::vector<Light> lights;          // colour/intensity/cone; placement comes from the node
     std::vector<Animation> animations;
     glm::vec3 background{0.0f};         // linear radiance of rays that leave the scene
+    // Every file the loader read (the scene file, its buffers and images), as given; empty for built-in scenes.
+    // The driver refuses an output path naming one of them.
+    std::vector<std::string> input_files;
 };
 
 // ---------------------------------------------------------------------------------------------------------------
