@@ -1,7 +1,9 @@
 // The one interface every stage implements, and the settings the shared command line gives it.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +12,7 @@
 #include "../trace/intersect.h"
 #include "../trace/offset.h"
 #include "../trace/shading.h"
+#include "hit_record.h"
 #include "image.h"
 #include "stats.h"
 
@@ -31,12 +34,18 @@ struct RenderSettings {
     Effects effects;                                     // what to simulate (already resolved from --effects)
     int threads = 0;                                     // 0 = all hardware threads
     bool quiet = false;
+    // Diagnostics, off unless asked for (they cost time and memory):
+    bool record_hits = false;             // --dump-hits: fill FrameResult::hits with every traced ray
+    bool record_tests_per_pixel = false;  // --heatmap: fill FrameResult::tests_per_pixel
 };
 
 struct FrameResult {
     Image image;
     FrameStats stats;
     nlohmann::json extra = nlohmann::json::object();     // stage-specific stats keys
+    std::vector<HitRecord> hits;                         // with settings.record_hits (hit_record.h)
+    std::vector<std::uint32_t> tests_per_pixel;          // with settings.record_tests_per_pixel: ray/triangle
+                                                         // tests of all rays of each pixel's tree, y * width + x
 };
 
 class Renderer {

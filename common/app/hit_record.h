@@ -1,0 +1,32 @@
+// One traced ray and what it found: the unit of the exact cross-stage checks (--dump-hits FILE).
+//
+// Every stage can record the rays it traced and their hits; a comparison tool then matches two stages' records ray
+// by ray. A ray is identified by (sample, pixel, path, kind, light), never by its position in a queue, so stages
+// may trace rays in any order:
+//   path  1 for the primary ray of a pixel; the reflection child of a ray with path p has path 2p, its refraction
+//         child 2p + 1 (so path < 2^31 limits --max-depth to 30 when hits are recorded);
+//   light for a shadow ray, the index of its light; a shadow ray has the path of the ray whose hit spawned it.
+// File format (little-endian): the 8 bytes "RTHITS\0\1", then HitRecord structs (48 bytes each), in any order.
+#pragma once
+
+#include <cstdint>
+
+namespace rt {
+
+enum class HitRecordKind : std::uint32_t { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
+
+struct HitRecord {
+    std::uint32_t sample = 0;      // sample index within the pixel (--spp), 0-based
+    std::uint32_t pixel = 0;       // y * width + x
+    std::uint32_t path = 1;        // see above
+    std::uint32_t kind_light = 0;  // HitRecordKind in bits 0-7, light index (shadow rays) in bits 8-31
+    std::int32_t triangle = -1;    // closest hit's triangle id, -1 for a miss; shadow rays: 1 occluded, -1 not
+    float t = 0.0f;                // closest hit's distance along the ray (0 for misses and shadow rays)
+    float origin[3] = {0, 0, 0};   // the ray as traced, to tell "same ray, different hit" from "different ray"
+    float direction[3] = {0, 0, 0};
+};
+static_assert(sizeof(HitRecord) == 48);
+
+inline constexpr char kHitFileMagic[8] = {'R', 'T', 'H', 'I', 'T', 'S', '\0', '\1'};
+
+}  // namespace rt
