@@ -3,15 +3,22 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <system_error>
+
+#include <sys/stat.h>
 
 #include <CLI/CLI.hpp>
 
 #include "../scene/builtin_scenes.h"
 #include "../scene/gltf_io.h"
+#include "atomic_file.h"
 #include "options.h"
+#include "output_files.h"
 #include "progress.h"
 
 namespace rt {
@@ -23,11 +30,38 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Lines on stdout. The reader may go away (`01_naive ... | head -c1`): SIGPIPE is ignored (run_stage), and after the
+// first failed write nothing more is printed, while rendering and the output files carry on; the exit code is not
+// affected.
+void print(const std::string& line) {
+    static bool open = true;
+    if (!open) return;
+    if (std::fputs(line.c_str(), stdout) < 0 || std::fflush(stdout) != 0) open = false;
+}
+
+// The scene file must be a regular file we can reach: one line naming it and the problem otherwise (a FIFO would
+// hang the reader, a folder is no scene, a loop of links or an overlong name is reported as such).
+void check_scene_file(const std::string& spec) {
+    struct stat st {};
+    if (::stat(spec.c_str(), &st) != 0) {
+        const int error = errno;
+        if (error == ENOENT) throw InputError("scene file not found: " + spec);
+        throw InputError("cannot read scene " + spec + ": " + std::system_category().message(error));
+    }
+    if (S_ISDIR(st.st_mode)) throw InputError("scene " + spec + " is a folder, not a .gltf/.glb file");
+    if (!S_ISREG(st.st_mode)) throw InputError("scene " + spec + " is not a regular file (a FIFO, socket or device)");
+}
+
 SceneAsset load_scene(const std::string& spec, bool quiet) {
     if (spec.starts_with("builtin:")) return make_builtin_scene(spec.substr(8));
-    if (!std::filesystem::exists(spec)) throw InputError("scene file not found: " + spec);
+    check_scene_file(spec);
     std::string warnings;
-    SceneAsset asset = load_gltf(spec, &warnings);
+    SceneAsset asset;
+    try {
+        asset = load_gltf(spec, &warnings);
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw InputError("cannot read scene " + spec + ": " + e.code().message());
+    }
     if (!warnings.empty() && !quiet) std::cerr << "warning: " << warnings << "\n";
     return asset;
 }
@@ -50,11 +84,32 @@ nlohmann::json settings_json(const RenderSettings& s) {
 void print_summary(const std::string& stage, const std::string& scene, const RenderSettings& s, const FrameStats& f,
                    const std::string& out) {
     const double rays = double(f.counters.total_rays());
-    std::printf("%s: %s %dx%d  %.1f ms  %.0f rays  %.2f Mrays/s  %.1f tests/ray%s%s\n", stage.c_str(), scene.c_str(),
-                s.width, s.height, f.total_ms, rays, f.mrays_per_s(),
-                rays > 0 ? double(f.counters.intersection_tests) / rays : 0.0, out.empty() ? "" : "  -> ",
-                out.c_str());
-    std::fflush(stdout);
+    char line[256];
+    std::snprintf(line, sizeof line, "%s: %s %dx%d  %.1f ms  %.0f rays  %.2f Mrays/s  %.1f tests/ray", stage.c_str(),
+                  scene.c_str(), s.width, s.height, f.total_ms, rays, f.mrays_per_s(),
+                  rays > 0 ? double(f.counters.intersection_tests) / rays : 0.0);
+    print(line + (out.empty() ? std::string() : "  -> " + out) + "\n");
+}
+
+void write_json_file(const std::string& file, const nlohmann::json& json) {
+    std::ofstream out(file, std::ios::trunc);
+    out << json.dump(2) << '\n';
+    out.close();
+    if (!out) throw std::runtime_error("write failed");
+}
+
+// save_gltf writes through its own temporary beside its target, ".<name>.tmp"; an interrupt removes that one too.
+void save_gltf_into(const SceneAsset& asset, const std::string& file) {
+    const std::filesystem::path p(file);
+    const std::string its_temporary = (p.parent_path() / ("." + p.filename().string() + ".tmp")).string();
+    remove_on_interrupt(its_temporary);
+    try {
+        save_gltf(asset, file);
+    } catch (...) {
+        forget_on_interrupt(its_temporary);
+        throw;
+    }
+    forget_on_interrupt(its_temporary);
 }
 
 int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
@@ -88,10 +143,30 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     if (options.camera >= int(asset.cameras.size()) && options.camera >= 0)
         throw InputError("--camera " + std::to_string(options.camera) + ": the scene has " +
                          std::to_string(asset.cameras.size()) + " camera(s)");
+    if (options.frames > 1 && asset.animations.empty() && !options.render.quiet)
+        std::cerr << stage << ": warning: --frames " << options.frames
+                  << " on a static scene: every frame is the same image\n";
+
+    // Every output is checked, and its temporary created, before anything is rendered; `files` removes what this
+    // run wrote unless it reaches files.keep().
+    const std::vector<OutputPath> outputs = planned_outputs(options);
+    RunOutputs files;
+    try {
+        check_outputs(outputs, asset.input_files);
+        for (const OutputPath& o : outputs)
+            if (o.option != "--out" || o.path == frame_path(options.out, 0, options.frames)) files.reserve(o);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(e.what());
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw InputError(e.path1().string() + ": " + e.code().message());
+    }
     if (!options.export_path.empty()) {
-        save_gltf(asset, options.export_path);
-        if (!options.render.quiet) std::printf("%s: exported %s\n", stage.c_str(), options.export_path.c_str());
-        if (options.out.empty() && options.stats.empty()) return 0;
+        files.write({"--export", options.export_path}, [&](const std::string& file) { save_gltf_into(asset, file); });
+        if (!options.render.quiet) print(stage + ": exported " + options.export_path + "\n");
+        if (options.out.empty() && options.stats.empty()) {
+            files.keep();
+            return 0;
+        }
     }
 
     renderer.initialize();
@@ -134,7 +209,8 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
 
         if (extra) continue;
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
-        if (!path.empty()) write_image(path, result.image);
+        if (!path.empty())
+            files.write({"--out", path}, [&](const std::string& file) { write_image_file(file, result.image); });
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
         total.counters.add(result.stats.counters);
         total.build_ms += result.stats.build_ms;
@@ -156,15 +232,18 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
                                 {"frames", options.frames}};
         if (options.frames > 1) extra["frame_stats"] = frames;
         if (last_extra.is_object()) extra.update(last_extra);
-        write_json(options.stats, make_stats_json(stage, label, options.render.width, options.render.height,
-                                                  renderer.renderer_name(), effect_names, total, extra));
+        const nlohmann::json json = make_stats_json(stage, label, options.render.width, options.render.height,
+                                                    renderer.renderer_name(), effect_names, total, extra);
+        files.write({"--stats", options.stats}, [&](const std::string& file) { write_json_file(file, json); });
     }
+    files.keep();
     return 0;
 }
 
 }  // namespace
 
 int run_stage(const std::string& stage, int argc, char** argv, Renderer& renderer) {
+    std::signal(SIGPIPE, SIG_IGN);   // a closed stdout is an error on write (see print), not the end of the run
     try {
         return run(stage, argc, argv, renderer);
     } catch (const InputError& e) {

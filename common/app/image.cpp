@@ -64,37 +64,43 @@ std::string supported_image_types() {
 
 void write_image(const std::string& path, const Image& image) {
     if (!is_supported_image_path(path)) throw std::runtime_error("unsupported image type: " + path);
-    const std::string ext = lower_extension(path);
-    const std::string tmp = temporary_sibling(path);
+    const std::string tmp = create_temporary(path);
+    try {
+        write_image_file(tmp, image);
+    } catch (const std::runtime_error& e) {
+        discard_temporary(tmp);
+        throw std::runtime_error("cannot write image " + path + ": " + e.what());
+    }
+    commit_temporary(tmp, path);
+}
+
+void write_image_file(const std::string& file, const Image& image) {
+    const std::string ext = lower_extension(file);
     bool ok = false;
     std::string error;
 #ifdef RT_PORTABLE
     const std::vector<std::uint8_t> bytes = to_srgb8(image);
-    ok = stbi_write_png(tmp.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3) != 0;
+    ok = stbi_write_png(file.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3) != 0;
     if (!ok) error = "stb_image_write failed";
 #else
-    auto out = OIIO::ImageOutput::create(tmp);
+    auto out = OIIO::ImageOutput::create(file);
     if (!out) {
         error = OIIO::geterror();
     } else if (is_float_format(ext)) {
         OIIO::ImageSpec spec(image.width, image.height, 3, ext == ".exr" ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
         if (ext == ".exr") spec.format = OIIO::TypeDesc::FLOAT;   // full float: the NaN/Inf checks need exact values
-        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) && out->close();
+        ok = out->open(file, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) && out->close();
         if (!ok) error = out->geterror();
     } else {
         const std::vector<std::uint8_t> bytes = to_srgb8(image);
         OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
         spec.attribute("oiio:ColorSpace", "sRGB");
         if (ext == ".jpg" || ext == ".jpeg") spec.attribute("Compression", "jpeg:95");
-        ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) && out->close();
+        ok = out->open(file, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) && out->close();
         if (!ok) error = out->geterror();
     }
 #endif
-    if (!ok) {
-        discard_temporary(tmp);
-        throw std::runtime_error("cannot write image " + path + ": " + error);
-    }
-    commit_temporary(tmp, path);
+    if (!ok) throw std::runtime_error(error.empty() ? std::string("the image library failed") : error);
 }
 
 Image read_image(const std::string& path) {

@@ -29,6 +29,10 @@ std::string supported_image_types();
 // Throws std::runtime_error with a one-line message.
 void write_image(const std::string& path, const Image& image);
 
+// Writes `image` into `file` itself, in the format its extension names, for callers that manage their own
+// temporaries (the driver). Throws std::runtime_error with the image library's one-line reason.
+void write_image_file(const std::string& file, const Image& image);
+
 // Reads any image OpenImageIO can read into linear RGB (8-bit files are taken as sRGB). Not in the portable build.
 Image read_image(const std::string& path);
 

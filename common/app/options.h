@@ -7,9 +7,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "output_files.h"
 #include "renderer.h"
 
 namespace rt {
+
+// Upper limits of the count options, so a typo cannot ask for days of rendering or millions of files.
+constexpr int kMaxFrames = 10000;
 
 struct Options {
     std::string scene = "builtin:whitted";   // builtin:NAME, FILE.gltf or FILE.glb
@@ -41,11 +45,21 @@ CLI::Option* add_enum(CLI::App& app, const std::string& name, E& value, const st
         ->default_str(current);
 }
 
+// The one validator of every numeric option (floating or integer): the value must be a finite number in [lo, hi], or
+// in (lo, hi] when `exclusive_lo`. NaN and Inf are refused. Errors are one line with readable bounds:
+// "--fps: nan is not a finite number", "--width: 0 is out of range: must be at least 1 and at most 16384".
+CLI::Validator number_in(double lo, double hi, bool exclusive_lo = false);
+
 // Adds every shared option to `app`, bound to `options`.
 void add_shared_options(CLI::App& app, Options& options);
 
-// Checks what CLI11's validators cannot (combinations, output paths). Throws std::invalid_argument with one line.
+// Checks what CLI11's validators cannot (combinations, file types by name). Throws std::invalid_argument with one
+// line. The output files themselves are checked by check_outputs(planned_outputs(...), ...), once the scene is loaded.
 void validate_options(const Options& options);
+
+// Every file the run will write, each --out frame on its own: the list check_outputs() compares with the inputs and
+// with each other. A new output option adds its path here.
+std::vector<OutputPath> planned_outputs(const Options& options);
 
 // Image file for frame `frame` of `count`: "w.png" for one frame, "w_0003.png" for frame 3 of many.
 std::string frame_path(const std::string& out, int frame, int count);
