@@ -277,8 +277,14 @@ Program Program::link(const std::string& name, const std::vector<std::pair<GLenu
             glGetShaderInfoLog(s, length, nullptr, log.data());
             log.resize(std::strlen(log.c_str()));
             cleanup();
-            throw ShaderError(std::string(stage_name(stage)) + " shader " + source.files.front() +
-                              " failed to compile:\n" + map_shader_log(log, source.files));
+            // First line: what failed and how badly; the compiler's lines follow.
+            const std::string details = map_shader_log(log, source.files);
+            std::size_t errors = 0;
+            std::istringstream lines(details);
+            for (std::string line; std::getline(lines, line);)
+                if (line.find("error") != std::string::npos || line.find("ERROR") != std::string::npos) ++errors;
+            throw ShaderError("cannot compile " + std::string(stage_name(stage)) + " shader " + source.files.front() +
+                              ": " + std::to_string(std::max<std::size_t>(errors, 1)) + " error(s)\n" + details);
         }
         all_files.insert(all_files.end(), source.files.begin(), source.files.end());
     }
@@ -294,7 +300,7 @@ Program Program::link(const std::string& name, const std::vector<std::pair<GLenu
     if (!ok) {
         // Link logs rarely carry lines; map them with the first shader's files (source numbers are per shader).
         const std::string log = program_log(p.id_);
-        throw ShaderError("program " + name + " failed to link:\n" + map_shader_log(log, shaders.front().second.files));
+        throw ShaderError("cannot link shader program " + name + "\n" + map_shader_log(log, shaders.front().second.files));
     }
     if (shaders.size() == 1 && shaders.front().first == GL_COMPUTE_SHADER) {
         GLint size[3] = {0, 0, 0};
