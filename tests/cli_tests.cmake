@@ -37,6 +37,51 @@ function(rt_add_cli_tests stage)
                    -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
   add_test(NAME cli.${stage}.frames_write_numbered_images
            COMMAND ${CMAKE_COMMAND} -DMODE=frames -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
+  # Hostile input, by class (issue 7). Each case: class.name|regex its one-line error must match|argument|...;
+  # @DIR@ is the case's own folder of fixtures (file, link.png -> target.png, loop_a <-> loop_b, fifo.png, folder.png,
+  # read_only.png, and, when named, scene.gltf with its hard link hard_link.json), @LONG@ a 300-byte name. The case
+  # must exit 2 with that one line and leave the folder exactly as it was (run_cli_case.cmake, MODE refused).
+  set(refused
+      "non_finite_option.fps_nan|--fps: nan is not a finite number|--fps|nan|--out|@DIR@/x.png"
+      "non_finite_option.cutoff_nan|--cutoff: nan is not a finite number|--cutoff|nan|--out|@DIR@/x.png"
+      "non_finite_option.epsilon_inf|--epsilon: inf is not a finite number|--epsilon|inf|--out|@DIR@/x.png"
+      "non_finite_option.fps_overflow|--fps: 1e999 is not a finite number|--fps|1e999|--out|@DIR@/x.png"
+      "readable_range.epsilon_negative|--epsilon: -1 is out of range: must be above 0 and at most 1000000|--epsilon|-1|--out|@DIR@/x.png"
+      "readable_range.camera_negative|--camera: -1 is out of range: must be at least 0 and at most 2147483647|--camera|-1|--out|@DIR@/x.png"
+      "count_limit.frames|--frames: 100000 is out of range: must be at least 1 and at most 10000|--frames|100000|--out|@DIR@/x.png"
+      "count_limit.spp|--spp: 5000 is out of range: must be at least 1 and at most 4096|--spp|5000|--out|@DIR@/x.png"
+      "output_clobbers_input.stats_is_scene|--stats .*scene.gltf: is the scene's input file|--scene|@DIR@/scene.gltf|--stats|@DIR@/scene.gltf|--out|@DIR@/x.png"
+      "output_clobbers_input.export_is_scene|--export .*scene.gltf: is the scene's input file|--scene|@DIR@/scene.gltf|--export|@DIR@/../output_clobbers_input.export_is_scene/scene.gltf"
+      "output_clobbers_input.hard_link|--stats .*hard_link.json: is the scene's input file|--scene|@DIR@/scene.gltf|--stats|@DIR@/hard_link.json|--out|@DIR@/x.png"
+      "output_clobbers_output.out_is_stats|--out .*x.png: is the same file as --stats|--out|@DIR@/x.png|--stats|@DIR@/./x.png"
+      "output_clobbers_output.frame_is_stats|--out .*x_0001.png: is the same file as --stats|--scene|builtin:dynamic|--frames|3|--out|@DIR@/x.png|--stats|@DIR@/x_0001.png"
+      "unsafe_output_target.symlink|--out .*link.png: is a symbolic link|--out|@DIR@/link.png|--stats|@DIR@/x.json"
+      "unsafe_output_target.fifo|--stats .*fifo.png: is not a regular file|--stats|@DIR@/fifo.png|--out|@DIR@/x.png"
+      "unsafe_output_target.folder|--out .*folder.png: is a folder|--out|@DIR@/folder.png"
+      "unsafe_output_target.read_only|--out .*read_only.png: is read-only|--out|@DIR@/read_only.png|--stats|@DIR@/x.json"
+      "bad_path.out_under_regular_file|--out .*file/x.png: .*file is not a folder|--out|@DIR@/file/x.png|--stats|@DIR@/x.json"
+      "bad_path.out_name_too_long|--out .*nnnn.png: File name too long|--out|@DIR@/@LONG@.png|--stats|@DIR@/x.json"
+      "bad_path.out_in_symlink_loop|--out .*loop_a/x.png: folder .*loop_a: Too many levels of symbolic links|--out|@DIR@/loop_a/x.png"
+      "bad_path.scene_symlink_loop|cannot read scene .*loop_a: Too many levels of symbolic links|--scene|@DIR@/loop_a|--out|@DIR@/x.png"
+      "bad_path.scene_name_too_long|cannot read scene .*nnnn.gltf: File name too long|--scene|@DIR@/@LONG@.gltf|--out|@DIR@/x.png"
+      "bad_path.scene_under_regular_file|cannot read scene .*file/x.gltf: Not a directory|--scene|@DIR@/file/x.gltf|--out|@DIR@/x.png"
+      "bad_path.scene_is_fifo|scene .*fifo.png is not a regular file|--scene|@DIR@/fifo.png|--out|@DIR@/x.png")
+  foreach(case IN LISTS refused)
+    string(REPLACE "|" ";" parts "${case}")
+    list(GET parts 0 name)
+    list(GET parts 1 expect)
+    list(SUBLIST parts 2 -1 args)
+    string(REPLACE ";" "|" args "${args}")
+    add_test(NAME cli.${stage}.${name}
+             COMMAND ${CMAKE_COMMAND} -DMODE=refused -DEXE=${exe} -DOUT_DIR=${out} "-DARGS=${args}"
+                     "-DEXPECT=${expect}" -DNAME=${name} -P ${script})
+    set_tests_properties(cli.${stage}.${name} PROPERTIES LABELS "cli;cli-${stage}")
+  endforeach()
+  foreach(mode closed_stdout concurrent_export interrupted static_frames)
+    add_test(NAME cli.${stage}.${mode}
+             COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
+    set_tests_properties(cli.${stage}.${mode} PROPERTIES LABELS "cli;cli-${stage}")
+  endforeach()
   set_tests_properties(cli.${stage}.stats_has_every_key cli.${stage}.diffuse_scene_spends_nothing_on_unused_effects
                        cli.${stage}.export_gltf_renders_like_builtin cli.${stage}.frames_write_numbered_images
                        PROPERTIES LABELS "cli;cli-${stage}")
