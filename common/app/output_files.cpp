@@ -60,7 +60,9 @@ std::optional<FileId> check_target(const OutputPath& o) {
 std::string canonical_name(const std::string& path) {
     std::error_code ec;
     const fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
-    return ec ? fs::absolute(path).lexically_normal().string() : p.string();
+    if (!ec) return p.string();
+    const fs::path absolute = fs::absolute(path, ec);
+    return (ec ? fs::path(path) : absolute).lexically_normal().string();
 }
 
 }  // namespace
@@ -101,8 +103,8 @@ void RunOutputs::reserve(const OutputPath& output) {
         pending_.push_back({output, create_temporary(output.path)});
     } catch (const std::runtime_error& e) {
         // create_temporary says "cannot write PATH: reason"; keep the reason.
-        const std::string what = e.what();
-        refuse(output, what.substr(what.find(": ") + 2));
+        const std::string what = e.what(), prefix = "cannot write " + output.path + ": ";
+        refuse(output, what.starts_with(prefix) ? what.substr(prefix.size()) : what);
     }
 }
 
