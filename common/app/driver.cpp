@@ -147,8 +147,9 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         std::cerr << stage << ": warning: --frames " << options.frames
                   << " on a static scene: every frame is the same image\n";
 
-    // Every output is checked, and its temporary created, before anything is rendered; `files` removes what this
-    // run wrote unless it reaches files.keep().
+    // Every output is checked, and its temporary created, before anything is rendered (of --out only the first
+    // frame's: the others share its folder, and a long animation should not hold thousands of empty files); `files`
+    // removes what this run wrote unless it reaches files.keep().
     const std::vector<OutputPath> outputs = planned_outputs(options);
     RunOutputs files;
     try {
