@@ -1,4 +1,5 @@
-// The GPU exclusive scan and stream compaction against std::exclusive_scan / a CPU filter on random arrays.
+// The GPU scans (exclusive, inclusive, segmented) and stream compaction against std::exclusive_scan,
+// std::inclusive_scan, a CPU segmented sum and a CPU filter on random arrays.
 #include <gtest/gtest.h>
 
 #include <numeric>
@@ -6,6 +7,7 @@
 
 #include "gpu_test_context.h"
 #include "scan.h"
+#include "storage_limit.h"
 
 namespace rt::gpu {
 namespace {
@@ -50,6 +52,91 @@ TEST(GpuScan, WrapsLikeUint32AndHandlesZeroLength) {
     total.clear_u32(99);
     scan.exclusive(in, out, 0, &total);
     EXPECT_EQ(total.download_value<std::uint32_t>(), 0u);
+}
+
+TEST(GpuScan, InclusiveMatchesStd) {
+    test_context();
+    Scan scan;
+    Buffer total(4);
+    for (std::size_t n : kSizes) {
+        const auto values = random_values(n, 1000, unsigned(n) + 1);
+        std::vector<std::uint32_t> expected(n);
+        std::inclusive_scan(values.begin(), values.end(), expected.begin());
+        Buffer in = Buffer::from(values), out(n * 4);
+        scan.inclusive(in, out, n, &total);
+        EXPECT_EQ(out.download<std::uint32_t>(n), expected) << "n = " << n;
+        EXPECT_EQ(total.download_value<std::uint32_t>(), expected.back()) << "n = " << n;
+        scan.inclusive(in, in, n);
+        EXPECT_EQ(in.download<std::uint32_t>(n), expected) << "in place, n = " << n;
+    }
+}
+
+std::vector<std::uint32_t> cpu_segmented_inclusive(const std::vector<std::uint32_t>& values,
+                                                   const std::vector<std::uint32_t>& heads) {
+    std::vector<std::uint32_t> out(values.size());
+    std::uint32_t sum = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (heads[i]) sum = 0;
+        sum += values[i];
+        out[i] = sum;
+    }
+    return out;
+}
+
+void expect_segmented_like_cpu(Scan& scan, const std::vector<std::uint32_t>& values,
+                               const std::vector<std::uint32_t>& heads, const std::string& what) {
+    const std::size_t n = values.size();
+    const auto expected = cpu_segmented_inclusive(values, heads);
+    Buffer in = Buffer::from(values), head_buffer = Buffer::from(heads), out(n * 4);
+    scan.segmented_inclusive(in, head_buffer, out, n);
+    EXPECT_EQ(out.download<std::uint32_t>(n), expected) << what << ", n = " << n;
+    scan.segmented_inclusive(in, head_buffer, in, n);
+    EXPECT_EQ(in.download<std::uint32_t>(n), expected) << what << ", in place, n = " << n;
+}
+
+TEST(GpuScan, SegmentedInclusiveMatchesCpu) {
+    test_context();
+    Scan scan;
+    for (std::size_t n : kSizes) {
+        const auto values = random_values(n, 0xffffffffu, unsigned(n) + 2);   // sums wrap: still exact
+        auto heads = random_values(n, 40, unsigned(n) + 3);
+        for (auto& h : heads) h = h == 0 ? 7u : 0u;   // about one head in 41, any nonzero value
+        expect_segmented_like_cpu(scan, values, heads, "random heads");
+        heads[0] = 1;
+        expect_segmented_like_cpu(scan, values, heads, "a head at 0");
+        expect_segmented_like_cpu(scan, values, std::vector<std::uint32_t>(n, 0), "no heads");
+        expect_segmented_like_cpu(scan, values, std::vector<std::uint32_t>(n, 1), "all heads");
+    }
+}
+
+// 2^25 elements are 65536 blocks of 512: one more than a 1D grid holds, so the block passes run on a 2D grid. It is
+// also exactly the llvmpipe storage block limit (128 MiB); one more element is an error, said in one line.
+TEST(GpuScan, TwoToThe25ElementsUseA2DGrid) {
+    test_context();
+    Scan scan;
+    const std::size_t n = std::size_t(1) << 25;
+    const auto values = random_values(n, 3, 25);
+    std::vector<std::uint32_t> expected(n);
+    std::exclusive_scan(values.begin(), values.end(), expected.begin(), 0u);
+    Buffer in = Buffer::from(values), out(n * 4);
+    scan.exclusive(in, out, n);
+    EXPECT_EQ(out.download<std::uint32_t>(n), expected);
+}
+
+TEST(GpuScan, BeyondTheStorageBlockLimitIsAOneLineError) {
+    test_context();
+    Scan scan;
+    Buffer small(16);
+    const std::size_t n = max_storage_block_bytes() / 4 + 1;
+    try {
+        scan.exclusive(small, small, n);
+        FAIL() << "no error for " << n << " elements";
+    } catch (const std::length_error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << message;
+        EXPECT_NE(message.find(std::to_string(n)), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
 }
 
 TEST(GpuCompaction, IndicesAndValuesMatchCpuFilter) {

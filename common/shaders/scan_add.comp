@@ -1,5 +1,6 @@
 #version 450 core
-// Second half of a multi-level scan: adds the scanned block sums back, data[i] += sums[block of i].
+// Second half of a multi-level scan: adds the scanned block sums back, data[i] += sums[block of i] (max() instead of
+// + with SCAN_MAX).
 #include "bindings.glsl"
 #include "compute.glsl"
 #include "scan_common.glsl"
@@ -16,6 +17,6 @@ void main() {
     if (block == 0u) return;   // the first block's offset is 0
     const uint add = scan_sums[block];
     const uint base = block * SCAN_BLOCK + gl_LocalInvocationID.x;
-    if (base < n) scan_out[base] += add;
-    if (base + SCAN_THREADS < n) scan_out[base + SCAN_THREADS] += add;
+    if (base < n) scan_out[base] = SCAN_OP(scan_out[base], add);
+    if (base + SCAN_THREADS < n) scan_out[base + SCAN_THREADS] = SCAN_OP(scan_out[base + SCAN_THREADS], add);
 }

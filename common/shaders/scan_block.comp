@@ -3,6 +3,9 @@
 // ch. 39): up-sweep (reduce) and down-sweep in shared memory, padded against bank conflicts. Writes the block's
 // total to scan_sums[block]; the host scans those sums recursively and adds them back (scan_add.comp).
 // Defines: SCAN_FLAGS: scan (in != 0 ? 1 : 0) instead of in (stream compaction's flag scan).
+//          SCAN_HEADS: scan (in != 0 ? i : 0), the index of each head flag (with SCAN_MAX: the segmented scan).
+//          SCAN_MAX: the operator is max instead of + (scan_common.glsl: SCAN_OP).
+//          SCAN_INCLUSIVE: out[i] includes in[i] (the block total and the sums are the same either way).
 #include "bindings.glsl"
 #include "compute.glsl"
 #include "scan_common.glsl"
@@ -19,8 +22,10 @@ shared uint temp[SCAN_BLOCK + (SCAN_BLOCK >> SCAN_LOG_BANKS)];
 
 uint load(uint i) {
     if (i >= n) return 0u;
-#ifdef SCAN_FLAGS
+#if defined(SCAN_FLAGS)
     return scan_in[i] != 0u ? 1u : 0u;
+#elif defined(SCAN_HEADS)
+    return scan_in[i] != 0u ? i : 0u;
 #else
     return scan_in[i];
 #endif
@@ -31,8 +36,9 @@ void main() {
     const uint t = gl_LocalInvocationID.x;
     const uint base = block * SCAN_BLOCK;
     const uint ai = t, bi = t + SCAN_THREADS;
-    temp[SCAN_PAD(ai)] = load(base + ai);
-    temp[SCAN_PAD(bi)] = load(base + bi);
+    const uint a_in = load(base + ai), b_in = load(base + bi);
+    temp[SCAN_PAD(ai)] = a_in;
+    temp[SCAN_PAD(bi)] = b_in;
 
     // Up-sweep: build partial sums in place up the tree.
     uint offset = 1u;
@@ -42,7 +48,7 @@ void main() {
         if (t < d) {
             const uint i = offset * (2u * t + 1u) - 1u;
             const uint j = offset * (2u * t + 2u) - 1u;
-            temp[SCAN_PAD(j)] += temp[SCAN_PAD(i)];
+            temp[SCAN_PAD(j)] = SCAN_OP(temp[SCAN_PAD(j)], temp[SCAN_PAD(i)]);
         }
         offset <<= 1;
     }
@@ -62,11 +68,16 @@ void main() {
             const uint j = SCAN_PAD(offset * (2u * t + 2u) - 1u);
             const uint x = temp[i];
             temp[i] = temp[j];
-            temp[j] += x;
+            temp[j] = SCAN_OP(temp[j], x);
         }
     }
     memoryBarrierShared();
     barrier();
+#ifdef SCAN_INCLUSIVE
+    if (base + ai < n) scan_out[base + ai] = SCAN_OP(temp[SCAN_PAD(ai)], a_in);
+    if (base + bi < n) scan_out[base + bi] = SCAN_OP(temp[SCAN_PAD(bi)], b_in);
+#else
     if (base + ai < n) scan_out[base + ai] = temp[SCAN_PAD(ai)];
     if (base + bi < n) scan_out[base + bi] = temp[SCAN_PAD(bi)];
+#endif
 }
