@@ -33,6 +33,12 @@ constexpr unsigned kBindingCompactOffsets = 12;
 constexpr unsigned kBindingCompactValues = 13;
 constexpr unsigned kBindingCompactOut = 14;
 constexpr unsigned kBindingHarness = 15;      // the GLSL test harness' in/out buffer
+// The radix sort (radix_sort.h) reuses points of the scan and compaction: each primitive rebinds its own per call.
+constexpr unsigned kBindingSortCounts = kBindingScanIn;         // digit counts per tile, then their scan
+constexpr unsigned kBindingSortKeysIn = kBindingCompactFlags;
+constexpr unsigned kBindingSortValuesIn = kBindingCompactOffsets;
+constexpr unsigned kBindingSortKeysOut = kBindingCompactValues;
+constexpr unsigned kBindingSortValuesOut = kBindingCompactOut;
 
 constexpr unsigned kBindingStageFirst = 16;
 
