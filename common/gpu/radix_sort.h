@@ -29,7 +29,7 @@ public:
     RadixSort();
     // Sorts keys[0..n) in place by their low key_bits bits (1..32; 0 leaves everything as it is), moving
     // values[0..n) along; elements with equal low bits keep their order, and the other bits of a key ride along
-    // unchanged. Both buffers must hold n uints.
+    // unchanged. Both buffers must hold n uints and be different buffers.
     void sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_bits = 32);
     // Elements per window (bound range) for arrays beyond one storage block: for tests; 0 = from the GL limit.
     void set_window_for_testing(std::size_t elements) { window_override_ = elements; }

@@ -111,6 +111,7 @@ TEST(GpuRadixSort, LengthsZeroAndOneAndKeyBitsZeroLeaveTheBuffers) {
     EXPECT_EQ(values.download<std::uint32_t>(2), (std::vector<std::uint32_t>{2, 1}));
     EXPECT_THROW(sort.sort(keys, values, 3), std::out_of_range);
     EXPECT_THROW(sort.sort(keys, values, 2, 33), std::invalid_argument);
+    EXPECT_THROW(sort.sort(keys, keys, 2), std::invalid_argument);
 }
 
 // Arrays larger than a window are bound window by window; small windows make that path cheap to test.
