@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "../scene/gltf_io.h"
 #include "../trace/shading.h"
 #include "bindings.h"
 #include "storage_limit.h"
@@ -120,9 +121,9 @@ void GpuScene::upload_textures(const Scene& scene) {
     }
     const std::size_t bytes = lut_bytes + word * 4;
     if (bytes > max_storage_block_bytes() || word > 0xffffffffu)
-        throw std::runtime_error("GpuScene: the scene's " + std::to_string(scene.textures.size()) + " textures need " +
-                                 describe_bytes(bytes) + " in one shader storage block, beyond this GPU's limit "
-                                 "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE) of " + describe_bytes(max_storage_block_bytes()));
+        throw SceneError("the scene's textures (" + std::to_string(scene.textures.size()) + ") need " +
+                         describe_bytes(bytes) + " in one GPU shader storage block, beyond this GPU's limit "
+                         "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE) of " + describe_bytes(max_storage_block_bytes()));
     textures_.resize(bytes);
     textures_.upload(lut.data(), lut_bytes);
     if (!info.empty()) textures_.upload(info.data(), info.size() * sizeof(GpuTextureInfo), lut_bytes);

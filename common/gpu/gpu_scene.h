@@ -60,8 +60,8 @@ GpuLight to_gpu(const Light& light);
 class GpuScene {
 public:
     // Uploads everything (buffers are reallocated only when their sizes change). Needs a current context. Throws
-    // std::runtime_error (one line, naming the size and the limit) when the textures do not fit one shader storage
-    // block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
+    // SceneError (one line naming the size and the limit: the stages exit 2) when the textures do not fit one
+    // shader storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
     void upload(const Scene& scene);
     // Only the camera and background (a camera animation over a still scene).
     void upload_camera(const Camera& camera, const glm::vec3& background);

@@ -1,6 +1,7 @@
 // GpuScene's texture storage: unpadded (memory is the sum of the texture sizes) and a clear error past the limit.
 #include <gtest/gtest.h>
 
+#include "../scene/gltf_io.h"
 #include "gpu_scene.h"
 #include "gpu_test_context.h"
 #include "storage_limit.h"
@@ -46,7 +47,7 @@ TEST(GpuScene, TexturesBeyondTheStorageBlockLimitAreAOneLineError) {
     try {
         gpu.upload(scene);
         FAIL() << "no error for textures of " << limit << " bytes";
-    } catch (const std::runtime_error& e) {
+    } catch (const SceneError& e) {   // the stages report it as bad input: one line, exit 2
         const std::string message = e.what();
         EXPECT_NE(message.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << message;
         EXPECT_NE(message.find(std::to_string(limit)), std::string::npos) << message;
