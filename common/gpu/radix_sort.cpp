@@ -32,7 +32,8 @@ RadixSort::RadixSort()
 void RadixSort::sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_bits) {
     if (key_bits > 32) throw std::invalid_argument("RadixSort: key_bits " + std::to_string(key_bits) + " > 32");
     if (n > 0xffffffffu) throw std::length_error("RadixSort: more than 2^32 - 1 elements");
-    if (keys.size() < n * 4 || values.size() < n * 4) throw std::out_of_range("RadixSort: buffers smaller than n uints");
+    if (keys.size() < n * 4 || values.size() < n * 4)
+        throw std::out_of_range("RadixSort: buffers smaller than n uints");
     if (&keys == &values) throw std::invalid_argument("RadixSort: keys and values must be different buffers");
     if (n <= 1 || key_bits == 0) return;
 

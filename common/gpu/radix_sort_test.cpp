@@ -66,7 +66,8 @@ const std::size_t kLengths[] = {2, 3, 255, 256, 257, 4095, 4096, 4097, 100003};
 TEST(GpuRadixSort, RandomKeysMatchStdStableSort) {
     test_context();
     RadixSort sort;
-    for (std::size_t n : kLengths) expect_sorted_like_std(sort, with_index_values(random_keys(n, unsigned(n))), 32, "random");
+    for (std::size_t n : kLengths)
+        expect_sorted_like_std(sort, with_index_values(random_keys(n, unsigned(n))), 32, "random");
 }
 
 TEST(GpuRadixSort, AllEqualSortedAndReverseSortedKeys) {
@@ -75,7 +76,7 @@ TEST(GpuRadixSort, AllEqualSortedAndReverseSortedKeys) {
     for (std::size_t n : {std::size_t(4097), std::size_t(70001)}) {
         expect_sorted_like_std(sort, with_index_values(std::vector<std::uint32_t>(n, 0xdeadbeefu)), 32, "all equal");
         std::vector<std::uint32_t> ascending(n);
-        for (std::size_t i = 0; i < n; ++i) ascending[i] = std::uint32_t(i * 2654435761u % 0xfffffffbu / 3);   // distinct
+        for (std::size_t i = 0; i < n; ++i) ascending[i] = std::uint32_t(i * 2654435761u % 0xfffffffbu);   // distinct
         std::sort(ascending.begin(), ascending.end());
         expect_sorted_like_std(sort, with_index_values(ascending), 32, "sorted");
         std::reverse(ascending.begin(), ascending.end());
@@ -100,7 +101,8 @@ TEST(GpuRadixSort, KeyBitsSortOnlyTheLowBits) {
 TEST(GpuRadixSort, LengthsZeroAndOneAndKeyBitsZeroLeaveTheBuffers) {
     test_context();
     RadixSort sort;
-    Buffer keys = Buffer::from(std::vector<std::uint32_t>{7, 3}), values = Buffer::from(std::vector<std::uint32_t>{1, 2});
+    Buffer keys = Buffer::from(std::vector<std::uint32_t>{7, 3});
+    Buffer values = Buffer::from(std::vector<std::uint32_t>{1, 2});
     sort.sort(keys, values, 0);
     sort.sort(keys, values, 1);
     sort.sort(keys, values, 2, 0);

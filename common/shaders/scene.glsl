@@ -29,7 +29,7 @@ struct Light {                       // 64 bytes, std430 (GpuLight)
     float cos_inner; float cos_outer;              // std::cos of the cones, computed on the CPU
 };
 
-struct TextureInfo {                 // 16 bytes (GpuTextureInfo): texel (x, y) is rt_texture_words[first + y * width + x]
+struct TextureInfo {                 // 16 bytes (GpuTextureInfo): texel (x, y) is word first + y * width + x
     int width; int height; int nearest; uint first;
 };
 
