@@ -19,8 +19,10 @@ void dispatch_blocks(const Program& p, std::size_t blocks) {
     else p.dispatch(kMaxGroupsX, unsigned((blocks + kMaxGroupsX - 1) / kMaxGroupsX));
 }
 
-// Binds the first n uints of a buffer (never more than the shader may see).
-void bind_uints(const Buffer& b, GLuint binding, std::size_t n) { b.bind_range(binding, 0, std::max<std::size_t>(n, 1) * 4); }
+// Binds uints [begin, begin + n) of a buffer (never more than the shader may see).
+void bind_uints(const Buffer& b, GLuint binding, std::size_t n, std::size_t begin = 0) {
+    b.bind_range(binding, begin * 4, std::max<std::size_t>(n, 1) * 4);
+}
 }  // namespace
 
 void check_storage_block(const char* what, std::size_t n) {
@@ -42,30 +44,49 @@ Scan::Scan()
       add_max_(Program::compute("common/scan_add.comp", {{"SCAN_MAX", "1"}})),
       segments_(Program::compute("common/scan_segments.comp")) {}
 
+std::size_t Scan::window() const {
+    GLint align = 0;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    const std::size_t w = window_override_ ? window_override_ : max_storage_block_bytes() / 4 / kScanBlock * kScanBlock;
+    if (w == 0 || w % kScanBlock != 0 || (w * 4) % std::size_t(std::max(align, 1)) != 0)
+        throw std::logic_error("Scan: window of " + std::to_string(w) + " elements is not whole blocks");
+    return w;
+}
+
+// The arrays are bound window by window (whole blocks, at most one storage block each); the block sums of all
+// windows go to one array (block_base: the window's first block), which is much smaller and bound whole.
 void Scan::scan_level(const Passes& passes, const Program& block, const Buffer& in, Buffer& out, std::size_t n,
                       std::size_t level) {
-    const std::size_t blocks = block_count(n);
+    const std::size_t blocks = block_count(n), w = window();
     sums_[level].reserve(blocks * sizeof(std::uint32_t));
-    bind_uints(in, kBindingScanIn, n);
-    bind_uints(out, kBindingScanOut, n);
     bind_uints(sums_[level], kBindingScanSums, blocks);
-    block.set("n", unsigned(n));
-    dispatch_blocks(block, blocks);
+    for (std::size_t begin = 0; begin < n; begin += w) {
+        const std::size_t count = std::min(w, n - begin);
+        bind_uints(in, kBindingScanIn, count, begin);
+        bind_uints(out, kBindingScanOut, count, begin);
+        block.set("n", unsigned(count));
+        block.set("block_base", unsigned(begin / kScanBlock));
+        dispatch_blocks(block, block_count(count));
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     if (blocks > 1) {
         // Scan the block totals in place, then add them to every element of their block.
         scan_level(passes, passes.block, sums_[level], sums_[level], blocks, level + 1);
-        bind_uints(out, kBindingScanOut, n);
         bind_uints(sums_[level], kBindingScanSums, blocks);
-        passes.add.set("n", unsigned(n));
-        dispatch_blocks(passes.add, blocks);
+        for (std::size_t begin = 0; begin < n; begin += w) {
+            const std::size_t count = std::min(w, n - begin);
+            bind_uints(out, kBindingScanOut, count, begin);
+            passes.add.set("n", unsigned(count));
+            passes.add.set("block_base", unsigned(begin / kScanBlock));
+            dispatch_blocks(passes.add, block_count(count));
+        }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 }
 
 void Scan::run(const Passes& passes, const Buffer& in, Buffer& out, std::size_t n, Buffer* total,
                std::size_t total_offset) {
-    check_storage_block("Scan", n);
+    if (n > 0xffffffffu) throw std::length_error("Scan: more than 2^32 - 1 elements");
     if (in.size() < n * 4 || out.size() < n * 4) throw std::out_of_range("Scan: buffers smaller than n uints");
     if (n == 0) {
         if (total) {
@@ -102,8 +123,9 @@ void Scan::inclusive(const Buffer& in, Buffer& out, std::size_t n, Buffer* total
 
 void Scan::segmented_inclusive(const Buffer& in, const Buffer& heads, Buffer& out, std::size_t n) {
     // Two whole-array scans and a difference: sums = inclusive scan of in; last_head = inclusive max-scan of
-    // (heads[i] != 0 ? i : 0); out[i] = sums[i] - sums[last_head[i] - 1] (scan_segments.comp).
-    check_storage_block("Scan", n);
+    // (heads[i] != 0 ? i : 0); out[i] = sums[i] - sums[last_head[i] - 1] (scan_segments.comp). That difference
+    // reads sums anywhere, so the arrays must fit one storage block.
+    check_storage_block("Scan::segmented_inclusive", n);
     if (heads.size() < n * 4) throw std::out_of_range("Scan: head flags smaller than n uints");
     if (n == 0) return;
     segment_sums_.reserve(n * 4);
@@ -127,6 +149,8 @@ Compaction::Compaction()
 
 void Compaction::run(const Program& scatter, const Buffer* values, const Buffer& flags, std::size_t n, Buffer& out,
                      Buffer& count, std::size_t count_offset) {
+    // The scatter writes anywhere in `out`, so the arrays must fit one storage block.
+    check_storage_block("Compaction", n);
     if (out.size() < n * 4) throw std::out_of_range("Compaction: output smaller than n uints");
     offsets_.reserve(n * sizeof(std::uint32_t));
     scan_.exclusive_flags(flags, offsets_, n, &count, count_offset);

@@ -1,7 +1,8 @@
 #version 450 core
 // Work-efficient exclusive prefix sum of one block of SCAN_BLOCK uints per work group (Blelloch 1990; GPU Gems 3,
 // ch. 39): up-sweep (reduce) and down-sweep in shared memory, padded against bank conflicts. Writes the block's
-// total to scan_sums[block]; the host scans those sums recursively and adds them back (scan_add.comp).
+// total to scan_sums[block_base + block]; the host scans those sums recursively and adds them back (scan_add.comp).
+// The arrays are bound from the window's first element (n elements); block_base is its first block.
 // Defines: SCAN_FLAGS: scan (in != 0 ? 1 : 0) instead of in (stream compaction's flag scan).
 //          SCAN_HEADS: scan (in != 0 ? i : 0), the index of each head flag (with SCAN_MAX: the segmented scan).
 //          SCAN_MAX: the operator is max instead of + (scan_common.glsl: SCAN_OP).
@@ -17,6 +18,7 @@ layout(std430, binding = RT_BINDING_SCAN_OUT) writeonly buffer ScanOut { uint sc
 layout(std430, binding = RT_BINDING_SCAN_SUMS) writeonly buffer ScanSums { uint scan_sums[]; };
 
 uniform uint n;
+uniform uint block_base;
 
 shared uint temp[SCAN_BLOCK + (SCAN_BLOCK >> SCAN_LOG_BANKS)];
 
@@ -25,7 +27,7 @@ uint load(uint i) {
 #if defined(SCAN_FLAGS)
     return scan_in[i] != 0u ? 1u : 0u;
 #elif defined(SCAN_HEADS)
-    return scan_in[i] != 0u ? i : 0u;
+    return scan_in[i] != 0u ? block_base * SCAN_BLOCK + i : 0u;   // the index in the whole array
 #else
     return scan_in[i];
 #endif
@@ -55,7 +57,7 @@ void main() {
     memoryBarrierShared();
     barrier();
     if (t == 0u) {
-        scan_sums[block] = temp[SCAN_PAD(SCAN_BLOCK - 1u)];
+        scan_sums[block_base + block] = temp[SCAN_PAD(SCAN_BLOCK - 1u)];
         temp[SCAN_PAD(SCAN_BLOCK - 1u)] = 0u;
     }
     // Down-sweep: traverse back down, swapping and adding.
