@@ -9,7 +9,7 @@
 //           (every implementation allows at least 96 SSBO binding points on NVIDIA and 32+ on Mesa, but a single
 //           shader may use at most GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS of them, 16 on NVIDIA)
 // UBO bindings: 0 = the scene block (camera, background, counts); stages from kUboStageFirst.
-// Texture units: 0 = the scene's texture array; stages from kTextureUnitStageFirst.
+// Texture units: 0 = unused (the scene's textures are in SSBO 6); stages from kTextureUnitStageFirst.
 #pragma once
 
 namespace rt::gpu {
@@ -21,7 +21,7 @@ constexpr unsigned kBindingUvs = 2;           // vec2[3 * triangles]
 constexpr unsigned kBindingMaterialIds = 3;   // uint[triangles]
 constexpr unsigned kBindingMaterials = 4;     // Material[]
 constexpr unsigned kBindingLights = 5;        // Light[]
-constexpr unsigned kBindingTextureInfo = 6;   // TextureInfo[] (size of each layer of the texture array)
+constexpr unsigned kBindingTextureInfo = 6;   // sRGB tables, TextureInfo[], texels (scene.glsl: SceneTextures)
 constexpr unsigned kBindingCounters = 7;      // uvec2[] 64-bit counters (counters.glsl, CounterBuffer)
 
 // Common GPU primitives.
@@ -33,6 +33,12 @@ constexpr unsigned kBindingCompactOffsets = 12;
 constexpr unsigned kBindingCompactValues = 13;
 constexpr unsigned kBindingCompactOut = 14;
 constexpr unsigned kBindingHarness = 15;      // the GLSL test harness' in/out buffer
+// The radix sort (radix_sort.h) reuses points of the scan and compaction: each primitive rebinds its own per call.
+constexpr unsigned kBindingSortCounts = kBindingScanIn;         // digit counts per tile, then their scan
+constexpr unsigned kBindingSortKeysIn = kBindingCompactFlags;
+constexpr unsigned kBindingSortValuesIn = kBindingCompactOffsets;
+constexpr unsigned kBindingSortKeysOut = kBindingCompactValues;
+constexpr unsigned kBindingSortValuesOut = kBindingCompactOut;
 
 constexpr unsigned kBindingStageFirst = 16;
 

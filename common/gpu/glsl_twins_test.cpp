@@ -496,7 +496,7 @@ void test_main() {
     out_i(20, l.type); out_vec3(21, l.position); out_f(24, l.range); out_f(25, l.cos_outer);
     out_vec3(26, rt_camera.position); out_f(29, rt_camera.tan_half_fov); out_vec3(30, rt_background);
     out_u(33, rt_triangle_count); out_u(34, rt_texture_count);
-    const TextureInfo ti = rt_texture_info[tri % rt_texture_count];
+    const TextureInfo ti = rt_texture_info(int(tri % rt_texture_count));
     out_i(35, ti.width); out_i(36, ti.height); out_i(37, ti.nearest); out_f(38, rt_srgb_lut[tri % 256u]);
 }
 )");

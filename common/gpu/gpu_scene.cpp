@@ -6,8 +6,10 @@
 #include <utility>
 #include <vector>
 
+#include "../scene/gltf_io.h"
 #include "../trace/shading.h"
 #include "bindings.h"
+#include "storage_limit.h"
 
 namespace rt::gpu {
 
@@ -57,26 +59,6 @@ GpuLight to_gpu(const Light& l) {
     return g;
 }
 
-GpuScene::GpuScene(GpuScene&& o) noexcept
-    : positions_(std::move(o.positions_)), normals_(std::move(o.normals_)), uvs_(std::move(o.uvs_)),
-      material_ids_(std::move(o.material_ids_)), materials_(std::move(o.materials_)), lights_(std::move(o.lights_)),
-      texture_info_(std::move(o.texture_info_)), ubo_(std::move(o.ubo_)),
-      texture_array_(std::exchange(o.texture_array_, 0)), tex_width_(o.tex_width_), tex_height_(o.tex_height_),
-      tex_layers_(o.tex_layers_), texture_bytes_(o.texture_bytes_), block_(o.block_) {}
-
-GpuScene& GpuScene::operator=(GpuScene&& o) noexcept {
-    if (this != &o) {
-        this->~GpuScene();
-        new (this) GpuScene(std::move(o));
-    }
-    return *this;
-}
-
-GpuScene::~GpuScene() {
-    if (texture_array_ && glDeleteTextures) glDeleteTextures(1, &texture_array_);
-    texture_array_ = 0;
-}
-
 namespace {
 template <class T, class U, class F>
 std::vector<T> convert(const std::vector<U>& in, F f) {
@@ -119,56 +101,38 @@ void GpuScene::upload_camera(const Camera& camera, const glm::vec3& background) 
 }
 
 void GpuScene::upload_textures(const Scene& scene) {
-    // Texture array of RGBA8UI (the file's bytes, decoded in the shader exactly as the CPU does), sized to the
-    // largest texture; at least 1x1x1 so the sampler is always complete.
-    int w = 1, h = 1;
-    for (const Texture& t : scene.textures) {
-        if (t.width > 0 && t.height > 0 && t.rgba8.size() < std::size_t(t.width) * std::size_t(t.height) * 4)
-            throw std::invalid_argument("GpuScene: texture '" + t.name + "' has fewer bytes than width*height*4");
-        w = std::max(w, t.width);
-        h = std::max(h, t.height);
-    }
-    const int layers = int(std::max<std::size_t>(1, scene.textures.size()));
-    GLint max_size = 0, max_layers = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-    if (w > max_size || h > max_size || layers > max_layers)
-        throw std::runtime_error("GpuScene: textures need a " + std::to_string(w) + "x" + std::to_string(h) + "x" +
-                                 std::to_string(layers) + " array, beyond this GPU's limits (" +
-                                 std::to_string(max_size) + ", " + std::to_string(max_layers) + " layers)");
-    if (!texture_array_ || w != tex_width_ || h != tex_height_ || layers != tex_layers_) {
-        // Immutable storage: a new size needs a new texture.
-        if (texture_array_) glDeleteTextures(1, &texture_array_);
-        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_array_);
-        glTextureStorage3D(texture_array_, 1, GL_RGBA8UI, w, h, layers);
-        // Integer textures must not be filtered; sampling is done by hand with texelFetch anyway.
-        glTextureParameteri(texture_array_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(texture_array_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureParameteri(texture_array_, GL_TEXTURE_MAX_LEVEL, 0);
-    }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    std::vector<GpuTextureInfo> info;
-    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
-        const Texture& t = scene.textures[i];
-        info.push_back({t.width, t.height, t.nearest ? 1 : 0, int(i)});
-        if (t.width > 0 && t.height > 0)
-            glTextureSubImage3D(texture_array_, 0, 0, 0, GLint(i), t.width, t.height, 1, GL_RGBA_INTEGER,
-                                GL_UNSIGNED_BYTE, t.rgba8.data());
-    }
-    tex_width_ = w;
-    tex_height_ = h;
-    tex_layers_ = layers;
-    texture_bytes_ = std::size_t(w) * std::size_t(h) * std::size_t(layers) * 4;
-    // The same sRGB and alpha tables as rt::sample_texture, then the per-texture info.
+    // One buffer: the sRGB and alpha tables of rt::sample_texture, a GpuTextureInfo per texture, then each texture's
+    // RGBA8 bytes (the file's, decoded in the shader exactly as the CPU does) right after the previous one. Memory is
+    // the sum of the texture sizes: no texture is padded to the largest.
     std::vector<float> lut(512);
     for (int i = 0; i < 256; ++i) {
         lut[std::size_t(i)] = srgb_to_linear(float(i) / 255.0f);
         lut[256 + std::size_t(i)] = float(i) / 255.0f;
     }
-    texture_info_.resize(lut.size() * sizeof(float) + std::max<std::size_t>(1, info.size()) * sizeof(GpuTextureInfo));
-    texture_info_.upload(lut.data(), lut.size() * sizeof(float));
-    if (!info.empty()) texture_info_.upload(info.data(), info.size() * sizeof(GpuTextureInfo), lut.size() * sizeof(float));
+    const std::size_t lut_bytes = lut.size() * sizeof(float);
+    std::vector<GpuTextureInfo> info;
+    std::size_t word = scene.textures.size() * sizeof(GpuTextureInfo) / 4;   // the texels start after the table
+    for (const Texture& t : scene.textures) {
+        const std::size_t texels = t.width > 0 && t.height > 0 ? std::size_t(t.width) * std::size_t(t.height) : 0;
+        if (t.rgba8.size() < texels * 4)
+            throw std::invalid_argument("GpuScene: texture '" + t.name + "' has fewer bytes than width*height*4");
+        info.push_back({t.width, t.height, t.nearest ? 1 : 0, std::uint32_t(word)});
+        word += texels;
+    }
+    const std::size_t bytes = lut_bytes + word * 4;
+    if (bytes > max_storage_block_bytes() || word > 0xffffffffu)
+        throw SceneError("the scene's textures (" + std::to_string(scene.textures.size()) + ") need " +
+                         describe_bytes(bytes) + " in one GPU shader storage block, beyond this GPU's limit "
+                         "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE) of " + describe_bytes(max_storage_block_bytes()));
+    textures_.resize(bytes);
+    textures_.upload(lut.data(), lut_bytes);
+    if (!info.empty()) textures_.upload(info.data(), info.size() * sizeof(GpuTextureInfo), lut_bytes);
+    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        if (t.width > 0 && t.height > 0)
+            textures_.upload(t.rgba8.data(), std::size_t(t.width) * std::size_t(t.height) * 4,
+                             lut_bytes + std::size_t(info[i].first) * 4);
+    }
     check_gl("GpuScene textures");
 }
 
@@ -179,14 +143,13 @@ void GpuScene::bind() const {
     material_ids_.bind(kBindingMaterialIds);
     materials_.bind(kBindingMaterials);
     lights_.bind(kBindingLights);
-    texture_info_.bind(kBindingTextureInfo);
+    textures_.bind(kBindingTextureInfo);
     ubo_.bind(kUboScene, GL_UNIFORM_BUFFER);
-    glBindTextureUnit(kTextureUnitTextures, texture_array_);
 }
 
 std::size_t GpuScene::bytes() const {
     return positions_.size() + normals_.size() + uvs_.size() + material_ids_.size() + materials_.size() +
-           lights_.size() + texture_info_.size() + ubo_.size() + texture_bytes_;
+           lights_.size() + textures_.size() + ubo_.size();
 }
 
 }  // namespace rt::gpu

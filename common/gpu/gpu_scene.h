@@ -1,4 +1,4 @@
-// The scene on the GPU: rt::Scene uploaded as SSBOs (plus a UBO and a texture array), in one layout that stages
+// The scene on the GPU: rt::Scene uploaded as SSBOs (plus a UBO), in one layout that stages
 // 02-05 all read through common/shaders/scene.glsl. Upload once per frame (or once, for a still scene), then bind()
 // before the passes; the bindings are in bindings.h / bindings.glsl.
 #pragma once
@@ -41,7 +41,8 @@ struct GpuLight {                        // scene.glsl: Light
 static_assert(sizeof(GpuLight) == 64);
 
 struct GpuTextureInfo {                  // scene.glsl: TextureInfo
-    std::int32_t width, height, nearest, layer;
+    std::int32_t width, height, nearest;
+    std::uint32_t first;                 // index of texel (0, 0) in the texture words (rt_texture_words)
 };
 static_assert(sizeof(GpuTextureInfo) == 16);
 
@@ -58,19 +59,13 @@ GpuLight to_gpu(const Light& light);
 
 class GpuScene {
 public:
-    GpuScene() = default;
-    GpuScene(const GpuScene&) = delete;
-    GpuScene& operator=(const GpuScene&) = delete;
-    GpuScene(GpuScene&&) noexcept;
-    GpuScene& operator=(GpuScene&&) noexcept;
-    ~GpuScene();
-
-    // Uploads everything (buffers and the texture array are reallocated only when their sizes change). Needs a
-    // current context.
+    // Uploads everything (buffers are reallocated only when their sizes change). Needs a current context. Throws
+    // SceneError (one line naming the size and the limit: the stages exit 2) when the textures do not fit one
+    // shader storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
     void upload(const Scene& scene);
     // Only the camera and background (a camera animation over a still scene).
     void upload_camera(const Camera& camera, const glm::vec3& background);
-    // Binds every SSBO, the scene UBO and the texture array at their binding points.
+    // Binds every SSBO and the scene UBO at their binding points.
     void bind() const;
 
     std::size_t triangle_count() const { return block_.triangle_count; }
@@ -80,6 +75,8 @@ public:
     const GpuSceneBlock& block() const { return block_; }
     // Bytes of GPU memory the scene takes.
     std::size_t bytes() const;
+    // Of which the textures: sRGB tables, one GpuTextureInfo and width * height * 4 bytes per texture, no padding.
+    std::size_t texture_bytes() const { return textures_.size(); }
 
     // The buffers, for stages that build on them (acceleration structures, a vertex pull in the rasterizer).
     const Buffer& positions() const { return positions_; }   // vec4 per vertex, 3 per triangle
@@ -88,14 +85,11 @@ public:
     const Buffer& material_ids() const { return material_ids_; }
     const Buffer& materials() const { return materials_; }
     const Buffer& lights() const { return lights_; }
-    GLuint texture_array() const { return texture_array_; }
+    const Buffer& textures() const { return textures_; }
 
 private:
     void upload_textures(const Scene& scene);
-    Buffer positions_, normals_, uvs_, material_ids_, materials_, lights_, texture_info_, ubo_;
-    GLuint texture_array_ = 0;
-    int tex_width_ = 0, tex_height_ = 0, tex_layers_ = 0;
-    std::size_t texture_bytes_ = 0;
+    Buffer positions_, normals_, uvs_, material_ids_, materials_, lights_, textures_, ubo_;
     GpuSceneBlock block_{};
 };
 

@@ -29,8 +29,8 @@ struct Light {                       // 64 bytes, std430 (GpuLight)
     float cos_inner; float cos_outer;              // std::cos of the cones, computed on the CPU
 };
 
-struct TextureInfo {                 // 16 bytes (GpuTextureInfo): layer `layer` of rt_textures holds it at (0,0)
-    int width; int height; int nearest; int layer;
+struct TextureInfo {                 // 16 bytes (GpuTextureInfo): texel (x, y) is word first + y * width + x
+    int width; int height; int nearest; uint first;
 };
 
 // Triangle i uses entries 3i, 3i+1, 3i+2.
@@ -40,20 +40,33 @@ layout(std430, binding = RT_BINDING_UVS) RT_SCENE_ACCESS buffer SceneUvs { vec2 
 layout(std430, binding = RT_BINDING_MATERIAL_IDS) RT_SCENE_ACCESS buffer SceneMaterialIds { uint rt_material_ids[]; };
 layout(std430, binding = RT_BINDING_MATERIALS) RT_SCENE_ACCESS buffer SceneMaterials { Material rt_materials[]; };
 layout(std430, binding = RT_BINDING_LIGHTS) RT_SCENE_ACCESS buffer SceneLights { Light rt_lights[]; };
-// sRGB decode and alpha tables (the exact floats the C++ sample_texture uses), then one TextureInfo per texture.
+// sRGB decode and alpha tables (the exact floats the C++ sample_texture uses), then the textures, unpadded: words
+// [0, 4 * rt_texture_count) hold one TextureInfo per texture, the rest every texture's texels one after the other
+// (one uint per texel: the file's RGBA8 bytes r, g, b, a from the low byte up; row 0 = top of the image = v 0).
+// Memory is the sum of the texture sizes, whatever their mix (GpuScene::upload_textures).
 layout(std430, binding = RT_BINDING_TEXTURE_INFO) readonly buffer SceneTextures {
     float rt_srgb_lut[256];
     float rt_alpha_lut[256];
-    TextureInfo rt_texture_info[];
+    uint rt_texture_words[];
 };
-// RGBA8 bytes as stored in the file (row 0 = top, v = 0), one texture per layer, sized to the largest texture.
-layout(binding = RT_TEXTURE_UNIT_TEXTURES) uniform usampler2DArray rt_textures;
 
 layout(std140, binding = RT_UBO_SCENE) uniform SceneBlock {   // 112 bytes (GpuSceneBlock)
     Camera rt_camera;
     vec3 rt_background; uint rt_triangle_count;
     uint rt_material_count; uint rt_light_count; uint rt_texture_count; uint rt_scene_pad;
 };
+
+TextureInfo rt_texture_info(int texture) {
+    const uint i = 4u * uint(texture);
+    return TextureInfo(int(rt_texture_words[i]), int(rt_texture_words[i + 1u]), int(rt_texture_words[i + 2u]),
+                       rt_texture_words[i + 3u]);
+}
+
+// The RGBA8 bytes of texel (x, y) of a texture, 0 <= x < width, 0 <= y < height.
+uvec4 rt_texel_bytes(TextureInfo info, int x, int y) {
+    const uint w = rt_texture_words[info.first + uint(y) * uint(info.width) + uint(x)];
+    return uvec4(w & 0xffu, (w >> 8) & 0xffu, (w >> 16) & 0xffu, w >> 24);
+}
 
 void load_triangle(uint triangle, out vec3 a, out vec3 b, out vec3 c) {
     a = rt_positions[3u * triangle].xyz;

@@ -70,12 +70,12 @@ int rt_wrap(int x, int n) { return x >= 0 ? x % n : (n - 1) - ((-(x + 1)) % n); 
 vec4 rt_texel(TextureInfo info, int x, int y) {
     x = rt_wrap(x, info.width);
     y = rt_wrap(y, info.height);
-    const uvec4 p = texelFetch(rt_textures, ivec3(x, y, info.layer), 0);
+    const uvec4 p = rt_texel_bytes(info, x, y);
     return vec4(rt_srgb_lut[p.r], rt_srgb_lut[p.g], rt_srgb_lut[p.b], rt_alpha_lut[p.a]);
 }
 
 vec4 sample_texture(int texture_index, vec2 uv) {
-    const TextureInfo info = rt_texture_info[texture_index];
+    const TextureInfo info = rt_texture_info(texture_index);
     if (info.width <= 0 || info.height <= 0 || !rt_isfinite(uv.x) || !rt_isfinite(uv.y)) return vec4(1.0);
     precise vec2 f = uv - floor(uv);
     precise float fx = f.x * float(info.width), fy = f.y * float(info.height);
