@@ -74,10 +74,7 @@ FrameResult GpuStage::render(const Scene& scene, const RenderSettings& settings)
         s.scene.upload(scene);
     }
     s.wavefront.begin_frame(s.scene, settings);   // compiles the passes when the variant changes
-    {
-        auto build_scope = s.timer.scope("build");
-        build(scene, settings);
-    }
+    build(scene, settings);
     for (const glm::vec2& offset : pixel_sample_offsets(settings.spp)) render_sample(scene, settings, offset);
     result.image = s.wavefront.finish_frame(result.stats.counters);
 

@@ -8,8 +8,9 @@
 //   render_sample()  one sample: its primary hits (rasterized, or wavefront().trace_camera_sample) and the passes,
 // and says what it adds to the stats (its own programs, whether its primary rays are rasterized).
 //
-// A frame: upload ("upload") -> wavefront().begin_frame -> build() ("build") -> render_sample() per sample ->
-// the image. Phases are GPU time (GL timestamps) of the passes in them; wavefront() times its own passes.
+// A frame: upload (timed "upload") -> wavefront().begin_frame -> build() -> render_sample() per sample -> the
+// image. Phases are GPU time (GL timestamps) of the passes in them: the stage times its own ("build", "raster"),
+// wavefront() times its passes ("trace", "shadow", "shade", "resolve", "camera_rays").
 #pragma once
 
 #include <map>
@@ -49,7 +50,8 @@ public:
     static void add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats);
 
 protected:
-    // The stage's acceleration structure over the uploaded scene (gpu_scene()), timed as "build".
+    // The stage's acceleration structure over the uploaded scene (gpu_scene()); time its passes with
+    // timer().scope("build").
     virtual void build(const Scene& scene, const RenderSettings& settings);
     // One sample through `offset` in each pixel (0.5, 0.5 = the centre): the primary hits, then
     // wavefront().shade_sample(), or wavefront().trace_camera_sample(offset) for both. Time the stage's own passes
