@@ -2,39 +2,31 @@
 // Scenes using a Ray-Space Hierarchy on the GPU"; Reis). Primary rays give exactly what rasterization gives, so
 // the GPU rasterizes them into a G-buffer, and only the secondary rays (shadow, reflection, refraction) are traced,
 // by the wavefront pipeline of common/gpu/wavefront.h with a brute-force traversal (shaders/brute_force.glsl).
+// Context, options, window, timers and stats come from common/gpu/gpu_stage.h; this is the per-frame code.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <vector>
 
-#include "common/app/renderer.h"
-#include "common/gpu/context.h"
-#include "common/gpu/window_presenter.h"
+#include "common/gpu/gbuffer.h"
+#include "common/gpu/gpu_stage.h"
 
 namespace rt {
 
-class HybridRenderer : public Renderer {
+class HybridRenderer : public gpu::GpuStage {
 public:
     HybridRenderer();
     ~HybridRenderer() override;
 
-    void add_options(CLI::App& app) override;       // --backend, --window, --screenshot, --gl-debug
-    void initialize() override;                     // creates the GL context (headless, or a window)
-    std::string renderer_name() const override;     // GL_RENDERER
-    // Without initialize() (unit tests), renders with whatever GL context is current.
-    FrameResult render(const Scene& scene, const RenderSettings& settings) override;
-    // --window without --screenshot: the window stays open (and animated scenes loop) until it is closed.
-    bool interactive() const override { return gpu_options.window && gpu_options.screenshot.empty() && !closed_; }
-
-    gpu::GpuOptions gpu_options;
+protected:
+    // No structure to build: brute force. Each sample rasterizes the G-buffer, then the pipeline shades and traces.
+    void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
+    bool rasterizes_primary_rays() const override { return true; }
+    std::vector<std::string> stage_programs() const override { return {"raster/primary_hits.comp"}; }
 
 private:
-    struct Gpu;   // everything that needs a context: scene upload, G-buffer, pipeline
-    CLI::App* app_ = nullptr;
-    gpu::GpuContext context_;    // declared before gpu_: destroyed after it
-    std::unique_ptr<Gpu> gpu_;
-    gpu::WindowPresenter window_;   // --window only
-    bool closed_ = false;           // the user closed the window
+    std::unique_ptr<gpu::GBuffer> gbuffer_;   // created with the first frame (needs the context)
 };
 
 }  // namespace rt

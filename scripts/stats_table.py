@@ -9,7 +9,7 @@ def main(paths):
     for path in paths:
         with open(path) as f:
             s = json.load(f)
-        rays = sum(s["rays"].values())
+        rays = s["traced_rays"]   # rasterized primary rays are not traced
         rows.append((s["stage"], s["scene"], f'{s["width"]}x{s["height"]}', f'{s["time_ms"]["total"]:.1f}',
                      f"{rays:,}", f'{s["mrays_per_s"]:.2f}', f'{s["intersection_tests"] / max(rays, 1):.1f}',
                      s["renderer"]))

@@ -83,7 +83,7 @@ nlohmann::json settings_json(const RenderSettings& s) {
 
 void print_summary(const std::string& stage, const std::string& scene, const RenderSettings& s, const FrameStats& f,
                    const std::string& out) {
-    const double rays = double(f.counters.total_rays());
+    const double rays = double(f.traced_rays());   // rasterized primary rays are not traced
     char line[256];
     std::snprintf(line, sizeof line, "%s: %s %dx%d  %.1f ms  %.0f rays  %.2f Mrays/s  %.1f tests/ray", stage.c_str(),
                   scene.c_str(), s.width, s.height, f.total_ms, rays, f.mrays_per_s(),
@@ -213,10 +213,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         if (!path.empty())
             files.write({"--out", path}, [&](const std::string& file) { write_image_file(file, result.image); });
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
-        total.counters.add(result.stats.counters);
-        total.build_ms += result.stats.build_ms;
-        total.trace_ms += result.stats.trace_ms;
-        total.total_ms += result.stats.total_ms;
+        total.add(result.stats);
         if (options.frames > 1)
             frames.push_back(make_stats_json(stage, label, settings.width, settings.height, renderer.renderer_name(),
                                              effect_names, result.stats, {{"time_s", flatten_options.time}}));

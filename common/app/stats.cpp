@@ -7,6 +7,18 @@
 
 namespace rt {
 
+void FrameStats::add(const FrameStats& o) {
+    counters.add(o.counters);
+    rasterized_rays += o.rasterized_rays;
+    upload_ms += o.upload_ms;
+    build_ms += o.build_ms;
+    raster_ms += o.raster_ms;
+    trace_ms += o.trace_ms;
+    shade_ms += o.shade_ms;
+    compile_ms += o.compile_ms;
+    total_ms += o.total_ms;
+}
+
 nlohmann::json make_stats_json(const std::string& stage, const std::string& scene, int width, int height,
                                const std::string& renderer, const std::vector<std::string>& effects,
                                const FrameStats& s, const nlohmann::json& extra) {
@@ -18,11 +30,14 @@ nlohmann::json make_stats_json(const std::string& stage, const std::string& scen
     j["renderer"] = renderer;
     j["effects"] = effects;
     j["rays"] = {{"primary", s.counters.rays[int(RayKind::Primary)]},
+                 {"rasterized", s.rasterized_rays},
                  {"shadow", s.counters.rays[int(RayKind::Shadow)]},
                  {"reflection", s.counters.rays[int(RayKind::Reflection)]},
                  {"refraction", s.counters.rays[int(RayKind::Refraction)]}};
+    j["traced_rays"] = s.traced_rays();
     j["intersection_tests"] = s.counters.intersection_tests;
-    j["time_ms"] = {{"build", s.build_ms}, {"trace", s.trace_ms}, {"total", s.total_ms}};
+    j["time_ms"] = {{"upload", s.upload_ms}, {"build", s.build_ms}, {"raster", s.raster_ms}, {"trace", s.trace_ms},
+                    {"shade", s.shade_ms},   {"compile", s.compile_ms}, {"total", s.total_ms}};
     j["mrays_per_s"] = s.mrays_per_s();
     if (extra.is_object()) j.update(extra);
     return j;

@@ -1,5 +1,7 @@
 // Binding points shared by C++ and GLSL. The GLSL side is common/shaders/bindings.glsl (#defines with the same
-// names in upper case, RT_BINDING_POSITIONS = kBindingPositions, ...); the test gpu_bindings_test keeps them equal.
+// names in upper case, RT_BINDING_POSITIONS = kBindingPositions, ...). bindings_test.cpp compiles the GLSL
+// declarations and checks, through GL's program interface queries, that every binding here and every std430/std140
+// struct offset and array stride of gpu_scene.h and wavefront.h is what the shaders declare.
 //
 // SSBO bindings (GL_SHADER_STORAGE_BUFFER):
 //   0..7    the scene, bound once by GpuScene::bind() (plus the counters)
@@ -41,6 +43,16 @@ constexpr unsigned kBindingSortKeysOut = kBindingCompactValues;
 constexpr unsigned kBindingSortValuesOut = kBindingCompactOut;
 
 constexpr unsigned kBindingStageFirst = 16;
+
+// The wavefront pipeline (wavefront.glsl: WF_BINDING_*), from kBindingStageFirst; a traversal's own buffers start at
+// kWavefrontBindingTraversalFirst (wavefront.h).
+constexpr unsigned kBindingWavefrontRaysIn = kBindingStageFirst + 0;
+constexpr unsigned kBindingWavefrontHits = kBindingStageFirst + 1;
+constexpr unsigned kBindingWavefrontRaysOut = kBindingStageFirst + 2;
+constexpr unsigned kBindingWavefrontShadowRays = kBindingStageFirst + 3;
+constexpr unsigned kBindingWavefrontRadiance = kBindingStageFirst + 4;
+constexpr unsigned kBindingWavefrontQueueCounts = kBindingStageFirst + 5;
+constexpr unsigned kBindingWavefrontImage = kBindingStageFirst + 6;
 
 constexpr unsigned kUboScene = 0;
 constexpr unsigned kUboStageFirst = 1;

@@ -2,6 +2,7 @@
 // surfaceless platform, i.e. llvmpipe), headless through OSMesa (dlopen'ed only when chosen), or a GLFW window.
 // GL functions come through the glad loader (generated at build time) fed by the backend's GetProcAddress; no
 // libGL/libOpenGL/libOSMesa is linked. Headless contexts have no default framebuffer: render into FBOs/SSBOs.
+// One file per backend: context_egl.cpp, context_osmesa.cpp, context_glfw.cpp (context_backend.h is their interface).
 #pragma once
 
 #include <cstdint>

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -256,7 +257,20 @@ std::string program_log(GLuint program) {
 }
 }  // namespace
 
+namespace {
+double g_compile_ms = 0.0;   // shader_compile_ms()
+struct CompileClock {        // adds its lifetime to g_compile_ms
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    ~CompileClock() {
+        g_compile_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+};
+}  // namespace
+
+double shader_compile_ms() { return g_compile_ms; }
+
 Program Program::link(const std::string& name, const std::vector<std::pair<GLenum, PreprocessedShader>>& shaders) {
+    const CompileClock clock;
     std::vector<GLuint> compiled;
     auto cleanup = [&] {
         for (GLuint s : compiled) glDeleteShader(s);

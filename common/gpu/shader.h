@@ -119,6 +119,9 @@ private:
     static Program link(const std::string& name, const std::vector<std::pair<GLenum, PreprocessedShader>>& shaders);
 };
 
+// Wall time spent compiling and linking programs in this process so far, in ms (the stats report it apart).
+double shader_compile_ms();
+
 // The most work groups one dispatch_threads() call may need in x before it switches to a 2D grid.
 constexpr unsigned kMaxGroupsX = 65535;
 

@@ -1,6 +1,7 @@
 #include "wavefront.h"
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 #include "bindings.h"
@@ -24,6 +25,15 @@ constexpr unsigned kQueueHits = 0, kQueueRaysOut = 1, kQueueShadowRays = 2;
 
 // Between passes: shader writes become visible to the next pass, to read-backs and to buffer clears.
 void pass_barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
+
+// Times a pass on the stage's GpuTimer, when it gave one, until end() or the end of the scope.
+struct PassTimer {
+    std::optional<GpuTimer::Scope> scope;
+    PassTimer(GpuTimer* timer, const char* phase) {
+        if (timer) scope.emplace(*timer, phase);
+    }
+    void end() { scope.reset(); }
+};
 
 void bind_if(const Buffer& b, unsigned binding) {
     if (b) b.bind(binding);
@@ -154,10 +164,12 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
     rays_in_.bind(kBindingRaysIn);
     camera_.set("wf_sample_offset", offset);
     const glm::uvec3 local = camera_.local_size();
+    PassTimer timed(timer, "camera_rays");
     camera_.dispatch((unsigned(settings_.width) + local.x - 1) / local.x,
                      (unsigned(settings_.height) + local.y - 1) / local.y);
     record_pass("camera_rays");
     pass_barrier();
+    timed.end();
     run_trace(pixels_);
     shade_sample();
 }
@@ -182,6 +194,7 @@ void Wavefront::shade_sample() {
 }
 
 void Wavefront::run_shade(std::size_t hits) {
+    const PassTimer timed(timer, "shade");
     // Every hit spawns at most one reflection and one refraction ray, and one shadow ray per light.
     if (secondary_) rays_out_.reserve(2 * hits * sizeof(WavefrontRay));
     if (shadows_) shadow_rays_.reserve(std::size_t(lights_) * hits * sizeof(WavefrontRay));
@@ -200,6 +213,7 @@ void Wavefront::run_shade(std::size_t hits) {
 }
 
 void Wavefront::run_shadow(std::size_t rays) {
+    const PassTimer timed(timer, "shadow");
     shadow_rays_.bind(kBindingShadowRays);
     radiance_.bind(kBindingRadiance);
     bind_traversal();
@@ -211,6 +225,7 @@ void Wavefront::run_shadow(std::size_t rays) {
 }
 
 void Wavefront::run_trace(std::size_t rays) {
+    const PassTimer timed(timer, "trace");
     hits_.reserve(rays * sizeof(WavefrontHit));   // at most one hit per ray
     clear_queue_counts();
     pass_barrier();
@@ -227,6 +242,7 @@ void Wavefront::run_trace(std::size_t rays) {
 }
 
 void Wavefront::resolve() {
+    const PassTimer timed(timer, "resolve");
     radiance_.bind(kBindingRadiance);
     image_.bind(kBindingImage);
     resolve_.dispatch_threads(pixels_);

@@ -100,6 +100,8 @@ public:
 
     // Count tests (COUNT_TESTS, default on): exact stats for one atomic per thread. Off for timing runs.
     bool count_tests = true;
+    // When set, each pass is timed on it as "shade", "shadow", "trace", "resolve" or "camera_rays".
+    GpuTimer* timer = nullptr;
 
 private:
     Program compile(const std::string& pass, bool with_traversal) const;

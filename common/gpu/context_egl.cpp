@@ -1,0 +1,169 @@
+// The EGL backend: a hardware device through EGL_EXT_platform_device when there is one, else Mesa's surfaceless
+// platform (llvmpipe). Contexts are surfaceless: no default framebuffer, the stages render into FBOs and SSBOs.
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#define EGL_NO_X11 1
+#define MESA_EGL_NO_X11_HEADERS 1
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+#include "context_backend.h"
+
+namespace rt::gpu {
+
+namespace {
+
+bool has_extension(const char* list, const char* name) {
+    if (!list) return false;
+    const std::size_t n = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+    return false;
+}
+
+std::string egl_error_string(EGLint e) {
+    switch (e) {
+        case EGL_SUCCESS: return "EGL_SUCCESS";
+        case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+        case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+        case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+        case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+        case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+        case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+        case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+        case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+        case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+        default: return "EGL error " + std::to_string(e);
+    }
+}
+
+// EGL displays are initialised once per process and not reference counted: terminate only with the last user.
+std::map<EGLDisplay, int>& display_users() {
+    static std::map<EGLDisplay, int> users;
+    return users;
+}
+void acquire_display(EGLDisplay d) { ++display_users()[d]; }
+void release_display(EGLDisplay d) {
+    auto it = display_users().find(d);
+    if (it != display_users().end() && --it->second == 0) {
+        display_users().erase(it);
+        eglTerminate(d);
+    }
+}
+
+struct EglContext final : GpuContext::Impl {
+    EGLDisplay display = EGL_NO_DISPLAY;
+    EGLContext context = EGL_NO_CONTEXT;
+
+    ~EglContext() override {
+        if (context == EGL_NO_CONTEXT) return;
+        eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(display, context);
+        release_display(display);
+    }
+    void make_native_current() override {
+        if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+            throw std::runtime_error("eglMakeCurrent failed: " + egl_error_string(eglGetError()));
+    }
+    int load_gl_functions() override { return gladLoadGL(reinterpret_cast<GLADloadfunc>(eglGetProcAddress)); }
+};
+
+// Tries one EGL display: initialise, choose a config, create a 4.5 core context and make it current surfaceless.
+bool try_egl_display(EglContext& impl, EGLDisplay display, bool debug, std::string& why) {
+    if (display == EGL_NO_DISPLAY) {
+        why = "no display (" + egl_error_string(eglGetError()) + ")";
+        return false;
+    }
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display, &major, &minor)) {
+        why = "eglInitialize: " + egl_error_string(eglGetError());
+        return false;
+    }
+    acquire_display(display);
+    const char* ext = eglQueryString(display, EGL_EXTENSIONS);
+    auto fail = [&](const std::string& w) {
+        why = w;
+        release_display(display);
+        return false;
+    };
+    if (!has_extension(ext, "EGL_KHR_surfaceless_context")) return fail("no EGL_KHR_surfaceless_context");
+    if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(EGL_OPENGL_API): " + egl_error_string(eglGetError()));
+    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLConfig config = nullptr;
+    EGLint count = 0;
+    if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) {
+        if (!has_extension(ext, "EGL_KHR_no_config_context")) return fail("no EGL config with OpenGL");
+        config = nullptr;   // EGL_NO_CONFIG_KHR
+    }
+    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
+                                      EGL_CONTEXT_MINOR_VERSION, 5,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                      EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+                                      EGL_NONE};
+    EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+    if (context == EGL_NO_CONTEXT) return fail("eglCreateContext(4.5 core): " + egl_error_string(eglGetError()));
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        const EGLint e = eglGetError();
+        eglDestroyContext(display, context);
+        return fail("eglMakeCurrent(surfaceless): " + egl_error_string(e));
+    }
+    impl.display = display;
+    impl.context = context;
+    return true;
+}
+
+}  // namespace
+
+std::unique_ptr<GpuContext::Impl> create_egl_context(bool debug) {
+    auto impl = std::make_unique<EglContext>();
+    std::string log;
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);   // client extensions (EGL_EXT_client_extensions)
+    // 1. A hardware device through EGL_EXT_device_enumeration + EGL_EXT_platform_device (e.g. the NVIDIA GPU).
+    if (has_extension(client, "EGL_EXT_platform_device") &&
+        (has_extension(client, "EGL_EXT_device_enumeration") || has_extension(client, "EGL_EXT_device_base"))) {
+        auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+        auto query_device_string =
+            reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+        EGLDeviceEXT devices[16];
+        EGLint count = 0;
+        if (query_devices && query_device_string && query_devices(16, devices, &count)) {
+            for (EGLint i = 0; i < count; ++i) {
+                const char* dev_ext = query_device_string(devices[i], EGL_EXTENSIONS);
+                if (has_extension(dev_ext, "EGL_MESA_device_software")) {
+                    log += "egl device " + std::to_string(i) + ": software, skipped; ";
+                    continue;
+                }
+                std::string why;
+                EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+                if (try_egl_display(*impl, display, debug, why)) {
+                    impl->backend = "egl-device";
+                    impl->fallback_log = log;
+                    return impl;
+                }
+                log += "egl device " + std::to_string(i) + ": " + why + "; ";
+            }
+        } else {
+            log += "egl device enumeration failed; ";
+        }
+    } else {
+        log += "no EGL_EXT_platform_device; ";
+    }
+    // 2. Mesa's surfaceless platform (llvmpipe when there is no GPU).
+    if (has_extension(client, "EGL_MESA_platform_surfaceless")) {
+        std::string why;
+        EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (try_egl_display(*impl, display, debug, why)) {
+            impl->backend = "egl-surfaceless";
+            impl->fallback_log = log;
+            return impl;
+        }
+        log += "egl surfaceless: " + why + "; ";
+    } else {
+        log += "no EGL_MESA_platform_surfaceless; ";
+    }
+    throw std::runtime_error("EGL: " + log);
+}
+
+}  // namespace rt::gpu

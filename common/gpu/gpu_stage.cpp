@@ -1,0 +1,103 @@
+#include "gpu_stage.h"
+
+#include <utility>
+
+#include <CLI/CLI.hpp>
+
+#include "../app/pixel_samples.h"
+#include "shader.h"
+
+namespace rt::gpu {
+
+struct GpuStage::Shared {
+    explicit Shared(Traversal traversal) : wavefront(std::move(traversal)) {}
+    GpuScene scene;
+    Wavefront wavefront;
+    GpuTimer timer;
+};
+
+GpuStage::GpuStage(Traversal traversal) : traversal_(std::move(traversal)) {}
+
+GpuStage::~GpuStage() {
+    shared_.reset();   // GL objects go before the context
+}
+
+void GpuStage::add_options(CLI::App& app) {
+    add_gpu_options(app, gpu_options);
+    app_ = &app;
+}
+
+void GpuStage::initialize() {
+    if (gpu_options.window && app_) {
+        // The window shows the image pixel for pixel (so --screenshot equals the headless image).
+        gpu_options.window_width = app_->get_option("--width")->as<int>();
+        gpu_options.window_height = app_->get_option("--height")->as<int>();
+    }
+    context_ = create_context(gpu_options);
+}
+
+std::string GpuStage::renderer_name() const {
+    if (context_.valid()) return context_.renderer();
+    const GLubyte* name = glGetString ? glGetString(GL_RENDERER) : nullptr;
+    return name ? reinterpret_cast<const char*>(name) : "unknown";
+}
+
+GpuScene& GpuStage::gpu_scene() { return shared_->scene; }
+Wavefront& GpuStage::wavefront() { return shared_->wavefront; }
+GpuTimer& GpuStage::timer() { return shared_->timer; }
+
+void GpuStage::build(const Scene&, const RenderSettings&) {}
+
+void GpuStage::add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats) {
+    const std::map<std::string, double FrameStats::*> bucket = {
+        {"upload", &FrameStats::upload_ms}, {"build", &FrameStats::build_ms},   {"raster", &FrameStats::raster_ms},
+        {"trace", &FrameStats::trace_ms},   {"shadow", &FrameStats::trace_ms},  {"shade", &FrameStats::shade_ms},
+        {"resolve", &FrameStats::shade_ms}, {"camera_rays", &FrameStats::shade_ms}};
+    for (const auto& [phase, ms] : phases) {
+        const auto it = bucket.find(phase);
+        if (it != bucket.end()) stats.*(it->second) += ms;
+    }
+}
+
+FrameResult GpuStage::render(const Scene& scene, const RenderSettings& settings) {
+    if (context_.valid()) context_.make_current();
+    if (!shared_) shared_ = std::make_unique<Shared>(traversal_);
+    Shared& s = *shared_;
+    s.timer.reset();
+    s.wavefront.timer = &s.timer;
+    const double compile_before = shader_compile_ms();
+    FrameResult result;
+
+    // The scene goes to the GPU once per frame (animated scenes change every frame), then the stage's structure.
+    {
+        auto upload = s.timer.scope("upload");
+        s.scene.upload(scene);
+    }
+    s.wavefront.begin_frame(s.scene, settings);   // compiles the passes when the variant changes
+    build(scene, settings);
+    for (const glm::vec2& offset : pixel_sample_offsets(settings.spp)) render_sample(scene, settings, offset);
+    result.image = s.wavefront.finish_frame(result.stats.counters);
+
+    // Stats every GPU stage reports.
+    const std::vector<std::pair<std::string, double>> phases = s.timer.results();
+    add_phase_times(phases, result.stats);
+    result.stats.compile_ms = shader_compile_ms() - compile_before;
+    if (rasterizes_primary_rays()) result.stats.rasterized_rays = result.stats.counters.rays[int(RayKind::Primary)];
+    nlohmann::json pass_times = nlohmann::json::object();
+    for (const auto& [phase, ms] : phases) pass_times[phase] = ms;
+    result.extra["pass_time_ms"] = pass_times;
+    result.extra["backend"] = context_.valid() ? context_.backend() : "current";
+    result.extra["passes"] = s.wavefront.passes();
+    result.extra["pass_dispatches"] = s.wavefront.dispatches();
+    nlohmann::json defines = nlohmann::json::object();
+    for (const auto& [k, v] : s.wavefront.defines()) defines[k] = v;
+    result.extra["shader_defines"] = defines;
+    std::vector<std::string> programs = s.wavefront.programs();
+    for (std::string& p : stage_programs()) programs.push_back(std::move(p));
+    result.extra["programs"] = programs;
+
+    if (context_.is_window()) closed_ = !window_.present(context_, result.image, gpu_options.screenshot);
+    return result;
+}
+
+}  // namespace rt::gpu
