@@ -32,8 +32,8 @@ layout(std140, binding = RT_UBO_STAGE_FIRST) uniform TestUboStageFirst { uint te
 layout(binding = RT_TEXTURE_UNIT_STAGE_FIRST) uniform usampler2D test_texture_stage_first;
 void main() {
     float f = rt_positions[0].x + rt_normals[0].x + rt_uvs[0].x + float(rt_material_ids[0]) + rt_materials[0].ior
-            + rt_lights[0].range + rt_srgb_lut[0] + float(rt_texture_info[0].layer) + float(rt_counters[0])
-            + rt_camera.yfov + float(rt_triangle_count) + float(textureSize(rt_textures, 0).x)
+            + rt_lights[0].range + rt_srgb_lut[0] + float(rt_texture_info(0).first) + float(rt_counters[0])
+            + rt_camera.yfov + float(rt_triangle_count)
             + float(test_stage_first[0] + test_ubo_stage_first) + float(textureSize(test_texture_stage_first, 0).x);
     test_out[0] = floatBitsToUint(f);
 }
@@ -159,8 +159,7 @@ TEST(Bindings, UniformBlocksAndTextureUnitsAreWhereTheCppSideBindsThem) {
     EXPECT_EQ(block_binding(p, GL_UNIFORM_BLOCK, "SceneBlock"), GLint(kUboScene));
     EXPECT_EQ(block_binding(p, GL_UNIFORM_BLOCK, "TestUboStageFirst"), GLint(kUboStageFirst));
     // A sampler's binding is its uniform value: the texture unit.
-    const std::map<std::string, unsigned> samplers = {{"rt_textures", kTextureUnitTextures},
-                                                      {"test_texture_stage_first", kTextureUnitStageFirst}};
+    const std::map<std::string, unsigned> samplers = {{"test_texture_stage_first", kTextureUnitStageFirst}};
     for (const auto& [sampler, unit] : samplers) {
         GLint value = -1;
         glGetUniformiv(p, glGetUniformLocation(p, sampler.c_str()), &value);
@@ -221,16 +220,14 @@ TEST(Bindings, SceneStructsHaveTheCppLayout) {
                                       {"outer_cone", offsetof(GpuLight, outer_cone)},
                                       {"cos_inner", offsetof(GpuLight, cos_inner)},
                                       {"cos_outer", offsetof(GpuLight, cos_outer)}}));
-    // GpuScene uploads the two 256-float tables (sRGB decode, alpha) first, then one GpuTextureInfo per texture.
+    // GpuScene uploads the two 256-float tables (sRGB decode, alpha) first, then the texture words: one
+    // GpuTextureInfo (4 words) per texture, then the texels (scene.glsl reads both through rt_texture_words).
+    static_assert(sizeof(GpuTextureInfo) == 4 * sizeof(std::uint32_t));
     constexpr std::size_t kTables = 2 * 256 * sizeof(float);
-    std::map<std::string, Layout> textures =
-        array_of<GpuTextureInfo>("rt_texture_info", kTables,
-                                 {{"width", offsetof(GpuTextureInfo, width)},
-                                  {"height", offsetof(GpuTextureInfo, height)},
-                                  {"nearest", offsetof(GpuTextureInfo, nearest)},
-                                  {"layer", offsetof(GpuTextureInfo, layer)}});
+    std::map<std::string, Layout> textures;
     textures["rt_srgb_lut[0]"] = {0, GLint(sizeof(float))};
     textures["rt_alpha_lut[0]"] = {GLint(256 * sizeof(float)), GLint(sizeof(float))};
+    textures["rt_texture_words[0]"] = {GLint(kTables), GLint(sizeof(std::uint32_t))};
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "SceneTextures", textures);
     // 64-bit counters as (lo, hi) uint pairs (CounterBuffer).
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "RtCounters",
