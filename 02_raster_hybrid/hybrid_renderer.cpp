@@ -20,7 +20,7 @@ double ms_since(Clock::time_point start) {
 }
 
 // The traversal stage 02 plugs into the wavefront pipeline: every ray against every triangle.
-gpu::Traversal brute_force_traversal() { return {"02_raster_hybrid/brute_force.glsl", {}, {}}; }
+gpu::Traversal brute_force_traversal() { return {"common/brute_force.glsl", {}, {}}; }
 
 }  // namespace
 
@@ -79,12 +79,11 @@ FrameResult HybridRenderer::render(const Scene& scene, const RenderSettings& set
         // Passes 2..n: primary hits, then shading and the secondary rays, bounce by bounce.
         start = Clock::now();
         g.scene.bind();
-        g.gbuffer.push_primary_hits(g.wavefront, settings.width, settings.height, offset);
-        g.wavefront.shade_sample();
+        g.gbuffer.shade_sample(g.wavefront, offset);
         glFinish();
         trace_ms += ms_since(start);
     }
-    result.image = g.wavefront.finish_frame(result.stats.counters);
+    g.wavefront.finish_frame(result);
     result.stats.build_ms = build_ms;
     result.stats.trace_ms = trace_ms;
 

@@ -1,6 +1,8 @@
 #include "wavefront.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
 #include <utility>
 
 #include "bindings.h"
@@ -12,26 +14,77 @@ namespace {
 // Binding points of wavefront.glsl.
 constexpr unsigned kBindingRaysIn = kBindingStageFirst + 0;
 constexpr unsigned kBindingHits = kBindingStageFirst + 1;
-constexpr unsigned kBindingRaysOut = kBindingStageFirst + 2;
-constexpr unsigned kBindingShadowRays = kBindingStageFirst + 3;
+constexpr unsigned kBindingRaySlots = kBindingStageFirst + 2;
+constexpr unsigned kBindingFlags = kBindingStageFirst + 3;
 constexpr unsigned kBindingRadiance = kBindingStageFirst + 4;
-constexpr unsigned kBindingQueueCounts = kBindingStageFirst + 5;
+constexpr unsigned kBindingResults = kBindingStageFirst + 5;
 constexpr unsigned kBindingImage = kBindingStageFirst + 6;
+constexpr unsigned kBindingTestsPerPixel = kBindingStageFirst + 7;
 static_assert(kWavefrontBindingTraversalFirst == kBindingStageFirst + 8);
 
-// Indices into the queue counters (wavefront.glsl: WfQueueCounts).
-constexpr unsigned kQueueHits = 0, kQueueRaysOut = 1, kQueueShadowRays = 2;
+constexpr std::size_t kTilePixels = 64;                  // 8x8 tiles (wavefront.glsl: wf_tile_pixel)
+constexpr std::size_t kRadianceBytesPerPixel = 9 * 4;    // 3 channels x 3 limbs (wf_accumulate)
+constexpr std::uint32_t kNoPixel = 0xffffffffu;
 
 // Between passes: shader writes become visible to the next pass, to read-backs and to buffer clears.
 void pass_barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
-void bind_if(const Buffer& b, unsigned binding) {
-    if (b) b.bind(binding);
+std::size_t env_storage_limit() {
+    const char* text = std::getenv("RT_MAX_SSBO_BYTES");
+    if (!text || !*text) return 0;
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(text, &end, 10);
+    if (*end != '\0' || v == 0) throw std::runtime_error("RT_MAX_SSBO_BYTES: expected a positive number of bytes");
+    return std::size_t(v);
+}
+
+HitRecord make_record(const WavefrontRay& ray, int sample, HitRecordKind kind, std::int32_t triangle, float t) {
+    HitRecord r;
+    r.sample = std::uint32_t(sample);
+    r.pixel = ray.pixel;
+    r.path = ray.path;
+    r.kind_light = std::uint32_t(kind) | (kind == HitRecordKind::Shadow ? ray.light << 8 : 0u);
+    r.triangle = triangle;
+    r.t = t;
+    for (int k = 0; k < 3; ++k) {
+        r.origin[k] = ray.origin[k];
+        r.direction[k] = ray.direction[k];
+    }
+    return r;
 }
 
 }  // namespace
 
-Wavefront::Wavefront(Traversal traversal) : traversal_(std::move(traversal)), counters_(16) {}
+Wavefront::Wavefront(Traversal traversal)
+    : traversal_(std::move(traversal)), compact_(Program::compute("wavefront/compact_records.comp")), counters_(16) {}
+
+std::size_t Wavefront::storage_block_limit() const {
+    GLint64 gl_limit = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &gl_limit);
+    std::size_t limit = gl_limit > 0 ? std::size_t(gl_limit) : std::size_t(128) << 20;
+    if (max_storage_bytes > 0) limit = std::min(limit, max_storage_bytes);
+    if (const std::size_t env = env_storage_limit(); env > 0) limit = std::min(limit, env);
+    return limit;
+}
+
+// How many hits (or rays) one batch holds: every buffer a batch binds must fit the storage limit. Per hit of a
+// batch: the hit (80 bytes), its hit slot, and its output slots (64 bytes per ray: reflection, refraction and at
+// least one light's shadow ray; more lights are shaded in several runs, see process_hits).
+void Wavefront::size_batches() {
+    storage_limit_ = storage_block_limit();
+    const std::size_t per_pixel = std::max(kRadianceBytesPerPixel, sizeof(glm::vec4));
+    if (pixels_ * per_pixel > storage_limit_)
+        throw std::runtime_error("wavefront: a " + std::to_string(settings_.width) + "x" +
+                                 std::to_string(settings_.height) + " image needs " +
+                                 std::to_string(pixels_ * per_pixel) + " bytes of per-pixel storage, more than the " +
+                                 std::to_string(storage_limit_) + "-byte storage block limit of this device");
+    const std::size_t rays_per_hit = std::size_t(secondary_ ? 2 : 0) + (shadows_ ? 1 : 0);
+    const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
+    batch_ = storage_limit_ / per_hit;
+    if (batch_ < kTilePixels)
+        throw std::runtime_error("wavefront: the storage block limit (" + std::to_string(storage_limit_) +
+                                 " bytes) cannot hold one 8x8 tile of rays");
+}
 
 void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& settings) {
     settings_ = settings;
@@ -39,6 +92,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     samples_ = 0;
     pass_order_.clear();
     dispatches_.clear();
+    hit_records_.clear();
 
     // The variant: only the effects the scene calls for (settings.effects is already resolved from --effects).
     // Reflection and refraction rays need a bounce to go to; shadow rays need a light.
@@ -51,7 +105,8 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     defines.insert_or_assign("RT_INTERSECT_METHOD", std::string(settings.intersect == IntersectMethod::Watertight
                                                                     ? "RT_INTERSECT_WATERTIGHT"
                                                                     : "RT_INTERSECT_MOLLER"));
-    if (count_tests) defines.insert_or_assign("COUNT_TESTS", std::string("1"));
+    if (count_tests || settings.record_tests_per_pixel) defines.insert_or_assign("COUNT_TESTS", std::string("1"));
+    if (settings.record_tests_per_pixel) defines.insert_or_assign("RECORD_TESTS_PER_PIXEL", std::string("1"));
     for (const auto& [k, v] : traversal_.defines) defines.insert_or_assign(k, v);
     std::string key;
     for (const auto& [k, v] : defines) key.append(k).append("=").append(v).append(";");
@@ -60,19 +115,25 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
         compiled_key_ = key;
         compile_programs();
     }
-    for (const Program* p : {&shade_, &shadow_, &trace_, &resolve_, &camera_})
+    for (const Program* p : {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_})
         if (*p) set_uniforms(*p);
 
     // Per-pixel buffers: this sample's radiance (fixed point) and the sum over samples.
     pixels_ = std::size_t(settings.width) * std::size_t(settings.height);
-    radiance_.resize(pixels_ * 3 * sizeof(std::int32_t));
+    size_batches();
+    radiance_.resize(pixels_ * kRadianceBytesPerPixel);
     radiance_.clear_u32(0);
     image_.resize(pixels_ * sizeof(glm::vec4));
     image_.clear_u32(0);   // 0x00000000 is 0.0f
-    if (!queue_counts_) queue_counts_ = Buffer(4 * sizeof(std::uint32_t));
+    if (settings.record_tests_per_pixel) {
+        tests_per_pixel_.resize(pixels_ * sizeof(std::uint32_t));
+        tests_per_pixel_.clear_u32(0);
+    } else {
+        tests_per_pixel_ = Buffer();
+    }
+    if (!counts_) counts_ = Buffer(4 * sizeof(std::uint32_t));
     // Queues of effects this variant does not simulate are not kept.
-    if (!shadows_) shadow_rays_ = Buffer();
-    if (!secondary_) rays_out_ = Buffer();
+    if (!secondary_) queues_.resize(std::min<std::size_t>(queues_.size(), 1));
     counters_.clear();
     scene.bind();
     counters_.bind();
@@ -96,14 +157,16 @@ Program Wavefront::compile(const std::string& pass, bool with_traversal) const {
 void Wavefront::compile_programs() {
     shade_ = compile("shade.comp", false);
     resolve_ = compile("resolve.comp", false);
-    shadow_ = shadows_ ? compile("shadow.comp", true) : Program();
-    trace_ = secondary_ ? compile("trace.comp", true) : Program();
+    shadow_ = shadows_ && !traversal_.shadow_batch ? compile("shadow.comp", true) : Program();
+    shadow_collect_ = shadows_ ? compile("shadow_collect.comp", false) : Program();
+    trace_ = secondary_ && !traversal_.trace_batch ? compile("trace.comp", true) : Program();
+    trace_collect_ = secondary_ ? compile("trace_collect.comp", false) : Program();
     camera_ = Program();   // compiled on first use (stages that trace primary rays)
 }
 
 std::vector<std::string> Wavefront::programs() const {
     std::vector<std::string> names;
-    for (const Program* p : {&shade_, &shadow_, &trace_, &resolve_, &camera_})
+    for (const Program* p : {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_})
         if (*p) names.push_back(p->name());
     return names;
 }
@@ -125,20 +188,63 @@ void Wavefront::bind_traversal() const {
     if (traversal_.bind) traversal_.bind();
 }
 
-void Wavefront::clear_queue_counts() { queue_counts_.clear_u32(0); }
-
-std::uint32_t Wavefront::read_queue_count(unsigned index) const {
-    return queue_counts_.download_value<std::uint32_t>(index);
+Buffer& Wavefront::queue(int depth) {
+    if (queues_.size() <= std::size_t(depth)) queues_.resize(std::size_t(depth) + 1);
+    return queues_[std::size_t(depth)];
 }
 
-void Wavefront::begin_primary_hits(std::size_t max_hits) {
-    hits_.reserve(std::max<std::size_t>(max_hits, 1) * sizeof(WavefrontHit));
-    clear_queue_counts();
+// Packs the flagged slots of `slots` (n records of stride_uints) into `out`, keeping their order: an exclusive scan
+// of the flags gives each used slot its place. Returns how many were used; with `split`, also how many of the
+// first `split` slots were (the scan's value at split).
+std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out,
+                                 std::size_t split, std::uint32_t* before_split) {
+    offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
+    scan_.exclusive_flags(flags_, offsets_, n, &counts_, 0);
+    const std::uint32_t total = counts_.download_value<std::uint32_t>(0);
+    if (before_split) *before_split = split < n ? offsets_.download_value<std::uint32_t>(split) : total;
+    if (total == 0) return 0;
+    out.reserve(std::size_t(total) * stride_uints * sizeof(std::uint32_t));
+    flags_.bind(kBindingCompactFlags);
+    offsets_.bind(kBindingCompactOffsets);
+    slots.bind(kBindingCompactValues);
+    out.bind(kBindingCompactOut);
+    compact_.set("n", unsigned(n));
+    compact_.set("stride", stride_uints);
+    compact_.dispatch_threads(n * stride_uints);
     pass_barrier();
-    hits_.bind(kBindingHits);
-    queue_counts_.bind(kBindingQueueCounts);
-    radiance_.bind(kBindingRadiance);
-    counters_.bind();
+    check_gl("wavefront: compaction");
+    return total;
+}
+
+// Primary batches: runs of whole 8x8 tiles, as many as one batch holds.
+template <class F>
+void Wavefront::for_each_tile_batch(F&& run_batch) {
+    const std::size_t tiles_x = (std::size_t(settings_.width) + 7) / 8, tiles_y = (std::size_t(settings_.height) + 7) / 8;
+    const std::size_t tiles = tiles_x * tiles_y, per_batch = std::max<std::size_t>(batch_ / kTilePixels, 1);
+    for (std::size_t first = 0; first < tiles; first += per_batch)
+        run_batch(first, std::min(per_batch, tiles - first) * kTilePixels);
+}
+
+void Wavefront::shade_sample(const Program& primary_pass) {
+    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots) {
+        hit_slots_.reserve(slots * sizeof(WavefrontHit));
+        flags_.reserve(slots * sizeof(std::uint32_t));
+        set_uniforms(primary_pass);
+        primary_pass.set("wf_tile_first", unsigned(first_tile));
+        primary_pass.set("wf_input_count", unsigned(slots));
+        hit_slots_.bind(kBindingHits);
+        flags_.bind(kBindingFlags);
+        radiance_.bind(kBindingRadiance);
+        primary_pass.dispatch_threads(slots);
+        record_pass("primary_hits");
+        pass_barrier();
+        check_gl("wavefront: primary hits");
+        if (settings_.record_hits) record_primary_slots(slots);
+        const std::size_t hits = compact(hit_slots_, slots, sizeof(WavefrontHit) / 4, hits_);
+        if (hits > 0) process_hits(hits, 0);
+    });
+    resolve();
+    ++samples_;
 }
 
 void Wavefront::trace_camera_sample(glm::vec2 offset) {
@@ -146,84 +252,175 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
         camera_ = compile("camera_rays.comp", false);
         set_uniforms(camera_);
     }
-    if (!trace_) {
+    if (!trace_ && !traversal_.trace_batch) {
         trace_ = compile("trace.comp", true);
         set_uniforms(trace_);
     }
-    rays_in_.reserve(pixels_ * sizeof(WavefrontRay));
-    rays_in_.bind(kBindingRaysIn);
-    camera_.set("wf_sample_offset", offset);
-    const glm::uvec3 local = camera_.local_size();
-    camera_.dispatch((unsigned(settings_.width) + local.x - 1) / local.x,
-                     (unsigned(settings_.height) + local.y - 1) / local.y);
-    record_pass("camera_rays");
-    pass_barrier();
-    run_trace(pixels_);
-    shade_sample();
-}
-
-void Wavefront::shade_sample() {
-    pass_barrier();
-    std::size_t hits = read_queue_count(kQueueHits);
-    // One bounce per iteration: shade the hits, trace their shadow rays, then their reflection/refraction rays.
-    // The shade pass spawns no ray at depth max_depth, so the loop ends after at most max_depth + 1 shade passes.
-    while (hits > 0) {
-        run_shade(hits);
-        const std::vector<std::uint32_t> counts = queue_counts_.download<std::uint32_t>(4);
-        if (counts[kQueueShadowRays] > 0) run_shadow(counts[kQueueShadowRays]);
-        const std::size_t rays = counts[kQueueRaysOut];
-        if (rays == 0) break;
-        std::swap(rays_in_, rays_out_);   // this bounce's output is the next trace pass' input
-        run_trace(rays);
-        hits = read_queue_count(kQueueHits);
+    if (!trace_collect_) {
+        trace_collect_ = compile("trace_collect.comp", false);
+        set_uniforms(trace_collect_);
     }
+    camera_.set("wf_sample_offset", offset);
+    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots) {
+        ray_slots_.reserve(slots * sizeof(WavefrontRay));
+        flags_.reserve(slots * sizeof(std::uint32_t));
+        camera_.set("wf_tile_first", unsigned(first_tile));
+        camera_.set("wf_input_count", unsigned(slots));
+        ray_slots_.bind(kBindingRaySlots);
+        flags_.bind(kBindingFlags);
+        camera_.dispatch_threads(slots);
+        record_pass("camera_rays");
+        pass_barrier();
+        Buffer& rays = queue(0);
+        const std::size_t count = compact(ray_slots_, slots, sizeof(WavefrontRay) / 4, rays);
+        run_rays(rays, count, 0);
+    });
     resolve();
     ++samples_;
 }
 
-void Wavefront::run_shade(std::size_t hits) {
-    // Every hit spawns at most one reflection and one refraction ray, and one shadow ray per light.
-    if (secondary_) rays_out_.reserve(2 * hits * sizeof(WavefrontRay));
-    if (shadows_) shadow_rays_.reserve(std::size_t(lights_) * hits * sizeof(WavefrontRay));
-    clear_queue_counts();
-    pass_barrier();
+// Shades `hits` hits (in hits_) of depth `depth`: their shadow rays are traced right away, their reflection and
+// refraction rays go to queue(depth + 1) and are traced (with all their descendants) before this returns.
+// Output slots of one shade run: [reflections | refractions] (secondary_) then one block of `hits` slots per light.
+// When the lights' blocks do not all fit the storage limit, the lights are shaded in several runs; the last one
+// also adds the local terms and spawns the reflection and refraction rays.
+void Wavefront::process_hits(std::size_t hits, int depth) {
+    const std::size_t secondary_slots = secondary_ ? 2 * hits : 0;
+    Buffer& out = queue(depth + 1);
+    std::uint32_t secondary = 0;
+    if (!shadows_) {
+        run_shade(hits, 0, lights_, true, 0);   // unshadowed lights are summed in the shade pass
+        if (secondary_slots > 0) secondary = compact(ray_slots_, secondary_slots, sizeof(WavefrontRay) / 4, out);
+    } else {
+        const std::size_t slots_fit = storage_limit_ / sizeof(WavefrontRay);
+        const unsigned per_run = unsigned(std::clamp<std::size_t>((slots_fit - secondary_slots) / hits, 1, lights_));
+        for (unsigned first = 0; first < lights_; first += per_run) {
+            const unsigned count = std::min(per_run, lights_ - first);
+            const bool last = first + count == lights_;
+            const std::size_t base = last ? secondary_slots : 0;
+            run_shade(hits, first, count, last, base);
+            std::uint32_t before = 0;
+            const std::uint32_t total =
+                compact(ray_slots_, base + count * hits, sizeof(WavefrontRay) / 4, out, base, &before);
+            if (total > before) run_shadow(out, before, total - before);
+            if (last) secondary = before;
+        }
+    }
+    if (secondary > 0) run_rays(out, secondary, depth + 1);
+}
+
+void Wavefront::run_shade(std::size_t hits, unsigned light_first, unsigned light_count, bool local,
+                          std::size_t shadow_base) {
+    const std::size_t all_slots = std::max(shadow_base + (shadows_ ? std::size_t(light_count) * hits : 0),
+                                           secondary_ && local ? 2 * hits : std::size_t(0));
+    ray_slots_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(WavefrontRay));
+    flags_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(std::uint32_t));
     hits_.bind(kBindingHits);
-    bind_if(rays_out_, kBindingRaysOut);
-    bind_if(shadow_rays_, kBindingShadowRays);
+    ray_slots_.bind(kBindingRaySlots);
+    flags_.bind(kBindingFlags);
     radiance_.bind(kBindingRadiance);
-    queue_counts_.bind(kBindingQueueCounts);
     shade_.set("wf_input_count", unsigned(hits));
+    shade_.set("wf_light_first", light_first);
+    shade_.set("wf_light_count", light_count);
+    shade_.set("wf_shadow_slot_base", unsigned(shadow_base));
+    shade_.set("wf_shade_local", local ? 1 : 0);
     shade_.dispatch_threads(hits);
     record_pass("shade");
     pass_barrier();
     check_gl("wavefront: shade pass");
 }
 
-void Wavefront::run_shadow(std::size_t rays) {
-    shadow_rays_.bind(kBindingShadowRays);
-    radiance_.bind(kBindingRadiance);
-    bind_traversal();
-    shadow_.set("wf_input_count", unsigned(rays));
-    shadow_.dispatch_threads(rays);
-    record_pass("shadow");
-    pass_barrier();
-    check_gl("wavefront: shadow pass");
+// Traces `count` rays of depth `depth` from `rays`, in batches: the hits of each batch are shaded (and their
+// descendants traced) before the next batch.
+void Wavefront::run_rays(Buffer& rays, std::size_t count, int depth) {
+    for (std::size_t first = 0; first < count; first += batch_) {
+        const std::size_t n = std::min(batch_, count - first);
+        run_trace(rays, first, n);
+        hit_slots_.reserve(n * sizeof(WavefrontHit));
+        flags_.reserve(n * sizeof(std::uint32_t));
+        hit_slots_.bind(kBindingHits);
+        flags_.bind(kBindingFlags);
+        run_collect(trace_collect_, rays, first, n);
+        const std::size_t hits = compact(hit_slots_, n, sizeof(WavefrontHit) / 4, hits_);
+        if (hits > 0) process_hits(hits, depth);
+    }
 }
 
-void Wavefront::run_trace(std::size_t rays) {
-    hits_.reserve(rays * sizeof(WavefrontHit));   // at most one hit per ray
-    clear_queue_counts();
-    pass_barrier();
-    rays_in_.bind(kBindingRaysIn);
-    hits_.bind(kBindingHits);
-    radiance_.bind(kBindingRadiance);
-    queue_counts_.bind(kBindingQueueCounts);
-    bind_traversal();
-    trace_.set("wf_input_count", unsigned(rays));
-    trace_.dispatch_threads(rays);
+void Wavefront::run_trace(Buffer& rays, std::size_t first, std::size_t count) {
+    results_.reserve(count * sizeof(WavefrontTraceResult));
+    if (traversal_.trace_batch) {
+        traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
+    } else {
+        rays.bind(kBindingRaysIn);
+        results_.bind(kBindingResults);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingTestsPerPixel);
+        bind_traversal();
+        trace_.set("wf_input_first", unsigned(first));
+        trace_.set("wf_input_count", unsigned(count));
+        trace_.dispatch_threads(count);
+    }
     record_pass("trace");
     pass_barrier();
     check_gl("wavefront: trace pass");
+    if (settings_.record_hits) record_rays(rays, first, count, false);
+}
+
+void Wavefront::run_shadow(Buffer& rays, std::size_t first, std::size_t count) {
+    results_.reserve(count * sizeof(std::uint32_t));
+    if (traversal_.shadow_batch) {
+        traversal_.shadow_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
+    } else {
+        rays.bind(kBindingRaysIn);
+        results_.bind(kBindingResults);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingTestsPerPixel);
+        bind_traversal();
+        shadow_.set("wf_input_first", unsigned(first));
+        shadow_.set("wf_input_count", unsigned(count));
+        shadow_.dispatch_threads(count);
+    }
+    record_pass("shadow");
+    pass_barrier();
+    check_gl("wavefront: shadow pass");
+    if (settings_.record_hits) record_rays(rays, first, count, true);
+    run_collect(shadow_collect_, rays, first, count);
+}
+
+// The pass after a traversal: reads results_ (one per ray) and adds radiance (and, for trace, fills hit slots).
+void Wavefront::run_collect(const Program& collect, Buffer& rays, std::size_t first, std::size_t count) {
+    rays.bind(kBindingRaysIn);
+    results_.bind(kBindingResults);
+    radiance_.bind(kBindingRadiance);
+    collect.set("wf_input_first", unsigned(first));
+    collect.set("wf_input_count", unsigned(count));
+    collect.dispatch_threads(count);
+    pass_barrier();
+    check_gl("wavefront: collect pass");
+}
+
+// --dump-hits: every slot of a primary batch inside the image is a primary ray (triangle -1 where the G-buffer is
+// empty).
+void Wavefront::record_primary_slots(std::size_t slots) {
+    for (const WavefrontHit& h : hit_slots_.download<WavefrontHit>(slots))
+        if (h.ray.pixel != kNoPixel)
+            hit_records_.push_back(make_record(h.ray, samples_, HitRecordKind::Primary, h.triangle,
+                                               h.triangle >= 0 ? h.t : 0.0f));
+}
+
+// --dump-hits: the rays of a trace or shadow pass with their results.
+void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow) {
+    const std::vector<WavefrontRay> queue = rays.download<WavefrontRay>(count, first);
+    if (shadow) {
+        const std::vector<std::uint32_t> occluded = results_.download<std::uint32_t>(count);
+        for (std::size_t i = 0; i < count; ++i)
+            hit_records_.push_back(make_record(queue[i], samples_, HitRecordKind::Shadow, occluded[i] ? 1 : -1, 0.0f));
+        return;
+    }
+    const std::vector<WavefrontTraceResult> results = results_.download<WavefrontTraceResult>(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const auto kind = HitRecordKind(queue[i].depth_kind >> 16);
+        hit_records_.push_back(make_record(queue[i], samples_, kind, results[i].triangle,
+                                           results[i].triangle >= 0 ? results[i].t : 0.0f));
+    }
 }
 
 void Wavefront::resolve() {
@@ -244,6 +441,13 @@ Image Wavefront::finish_frame(RayCounters& counters) {
     counters.rays[int(RayKind::Primary)] = std::uint64_t(pixels_) * std::uint64_t(samples_);
     check_gl("wavefront: finish frame");
     return image;
+}
+
+void Wavefront::finish_frame(FrameResult& result) {
+    result.image = finish_frame(result.stats.counters);
+    if (settings_.record_hits) result.hits = std::move(hit_records_);
+    hit_records_.clear();
+    if (settings_.record_tests_per_pixel) result.tests_per_pixel = tests_per_pixel_.download<std::uint32_t>(pixels_);
 }
 
 }  // namespace rt::gpu
