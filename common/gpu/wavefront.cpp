@@ -20,6 +20,8 @@ constexpr unsigned kBindingRadiance = kBindingStageFirst + 4;
 constexpr unsigned kBindingResults = kBindingStageFirst + 5;
 constexpr unsigned kBindingImage = kBindingStageFirst + 6;
 constexpr unsigned kBindingTestsPerPixel = kBindingStageFirst + 7;
+static_assert(kWavefrontBindingRaysIn == kBindingRaysIn && kWavefrontBindingResults == kBindingResults &&
+              kWavefrontBindingTestsPerPixel == kBindingTestsPerPixel);
 static_assert(kWavefrontBindingTraversalFirst == kBindingStageFirst + 8);
 
 constexpr std::size_t kTilePixels = 64;                  // 8x8 tiles (wavefront.glsl: wf_tile_pixel)

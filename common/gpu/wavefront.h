@@ -49,6 +49,10 @@
 
 namespace rt::gpu {
 
+// SSBO bindings of wavefront.glsl a batch traversal's passes use (WF_BINDING_RAYS_IN, _RESULTS, _TESTS_PER_PIXEL).
+constexpr unsigned kWavefrontBindingRaysIn = 16;
+constexpr unsigned kWavefrontBindingResults = 21;
+constexpr unsigned kWavefrontBindingTestsPerPixel = 23;
 // First SSBO binding a traversal may use for its own data (wavefront.glsl: WF_BINDING_TRAVERSAL_FIRST).
 constexpr unsigned kWavefrontBindingTraversalFirst = 24;
 // The primary-hit pass of a stage may bind its own textures from here (02 binds its G-buffer).
