@@ -135,7 +135,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     }
     if (!counts_) counts_ = Buffer(4 * sizeof(std::uint32_t));
     // Queues of effects this variant does not simulate are not kept.
-    if (!secondary_) queues_.resize(std::min<std::size_t>(queues_.size(), 1));
+    if (!secondary_) queues_.resize(std::min<std::size_t>(queues_.size(), 2));   // primary rays, shadow rays
     counters_.clear();
     scene.bind();
     counters_.bind();
