@@ -130,7 +130,8 @@ public:
     const ShaderDefines& defines() const { return defines_; }
     // Programs compiled for this frame's variant, e.g. "wavefront/shade.comp".
     std::vector<std::string> programs() const;
-    // Passes dispatched since begin_frame, in first-run order, and how many dispatches each.
+    // Passes dispatched since begin_frame, in first-run order, and how many dispatches each (a pass' compaction and
+    // its collect step count with it: "trace" is trace.comp or trace_batch, trace_collect.comp and the scan).
     const std::vector<std::string>& passes() const { return pass_order_; }
     const std::map<std::string, int>& dispatches() const { return dispatches_; }
     // The settings uniforms on a stage's own pass (wf_max_depth, wf_image_size, ...), for primary-hit passes.

@@ -377,6 +377,31 @@ TEST(StorageLimit, TinyLimitGivesIdenticalImageCountsAndHits) {
     EXPECT_GT(dispatches(tiny, "shade"), 2 * dispatches(unlimited, "shade"));
 }
 
+// Stages 03-05 trace their primary rays: camera rays in tile order, batches of tiles under a tiny limit.
+FrameResult render_traced(const Scene& scene, const RenderSettings& settings, std::size_t max_storage_bytes) {
+    gpu::test_context();
+    gpu::GpuScene gpu_scene;
+    gpu_scene.upload(scene);
+    gpu::Wavefront wavefront(kBruteForce);
+    wavefront.max_storage_bytes = max_storage_bytes;
+    wavefront.begin_frame(gpu_scene, settings);
+    wavefront.trace_camera_sample(glm::vec2(0.5f));
+    FrameResult result;
+    wavefront.finish_frame(result);
+    return result;
+}
+
+TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
+    const Scene scene = many_lights_scene(64, 48);
+    const RenderSettings settings = settings_for(scene, 64, 48);
+    const FrameResult unlimited = render_traced(scene, settings, 0);
+    const FrameResult tiny = render_traced(scene, settings, 128 << 10);
+    expect_same_frame(unlimited, tiny, false);
+    std::size_t primaries = 0;
+    for (const HitRecord& h : unlimited.hits) primaries += (h.kind_light & 0xff) == std::uint32_t(HitRecordKind::Primary);
+    EXPECT_EQ(primaries, 64u * 48u);
+}
+
 TEST(StorageLimit, ImageBeyondTheLimitIsRefusedWithAClearError) {
     const Scene scene = builtin("diffuse", 64, 48);
     try {
