@@ -221,7 +221,8 @@ std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned st
 // Primary batches: runs of whole 8x8 tiles, as many as one batch holds.
 template <class F>
 void Wavefront::for_each_tile_batch(F&& run_batch) {
-    const std::size_t tiles_x = (std::size_t(settings_.width) + 7) / 8, tiles_y = (std::size_t(settings_.height) + 7) / 8;
+    const std::size_t tiles_x = (std::size_t(settings_.width) + 7) / 8;
+    const std::size_t tiles_y = (std::size_t(settings_.height) + 7) / 8;
     const std::size_t tiles = tiles_x * tiles_y, per_batch = std::max<std::size_t>(batch_ / kTilePixels, 1);
     for (std::size_t first = 0; first < tiles; first += per_batch)
         run_batch(first, std::min(per_batch, tiles - first) * kTilePixels);

@@ -371,7 +371,9 @@ TEST(StorageLimit, TinyLimitGivesIdenticalImageCountsAndHits) {
     expect_same_frame(unlimited, tiny, false);
     EXPECT_GT(unlimited.stats.counters.rays[int(RayKind::Shadow)], 0u);
     // It did run in batches: several primary batches, and shade runs per light.
-    const auto dispatches = [](const FrameResult& r, const char* pass) { return int(r.extra["pass_dispatches"][pass]); };
+    const auto dispatches = [](const FrameResult& r, const char* pass) {
+        return int(r.extra["pass_dispatches"][pass]);
+    };
     EXPECT_EQ(dispatches(unlimited, "primary_hits"), 1);
     EXPECT_EQ(dispatches(tiny, "primary_hits"), 5);   // 48 tiles, 10 per batch
     EXPECT_GT(dispatches(tiny, "shade"), 2 * dispatches(unlimited, "shade"));
@@ -398,7 +400,8 @@ TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
     const FrameResult tiny = render_traced(scene, settings, 128 << 10);
     expect_same_frame(unlimited, tiny, false);
     std::size_t primaries = 0;
-    for (const HitRecord& h : unlimited.hits) primaries += (h.kind_light & 0xff) == std::uint32_t(HitRecordKind::Primary);
+    for (const HitRecord& h : unlimited.hits)
+        primaries += (h.kind_light & 0xff) == std::uint32_t(HitRecordKind::Primary);
     EXPECT_EQ(primaries, 64u * 48u);
 }
 

@@ -8,7 +8,9 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = WF_BINDING_RESULTS) writeonly buffer WfTraceResults { WavefrontTraceResult wf_trace_results[]; };
+layout(std430, binding = WF_BINDING_RESULTS) writeonly buffer WfTraceResults {
+    WavefrontTraceResult wf_trace_results[];
+};
 
 void main() {
     const uint i = rt_global_index();

@@ -121,7 +121,8 @@ uint wf_compact_bits(uint v) {   // the even bits of v, packed (Morton decode)
 bool wf_tile_pixel(uint slot, out ivec2 p) {
     const uint tiles_x = (uint(wf_image_size.x) + 7u) / 8u;
     const uint tile = slot / 64u, inside = slot % 64u;
-    p = ivec2(int((tile % tiles_x) * 8u + wf_compact_bits(inside)), int((tile / tiles_x) * 8u + wf_compact_bits(inside >> 1)));
+    p = ivec2(int((tile % tiles_x) * 8u + wf_compact_bits(inside)),
+              int((tile / tiles_x) * 8u + wf_compact_bits(inside >> 1)));
     return p.x < wf_image_size.x && p.y < wf_image_size.y;
 }
 
