@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <set>
 #include <tuple>
 
 #include "01_naive/brute_force_tracer.h"
@@ -163,6 +164,35 @@ TEST(OrderedQueues, PrimaryHitsInTileMortonOrderSpawnedRaysGroupedByKind) {
         }
     }
     EXPECT_GT(kind_changes, 2);
+}
+
+// Records name rays in their tree (hit_record.h): a reflection (2p) or refraction (2p + 1) ray and a shadow ray
+// (path p) each come from a hit of the ray with path p of the same pixel.
+TEST(HitRecords, EveryRayHasTheParentHitItsPathNames) {
+    const Scene scene = builtin("whitted", 64, 48);
+    const FrameResult r = render_hybrid(scene, settings_for(scene, 64, 48), kBruteForce);
+    std::set<std::pair<std::uint32_t, std::uint32_t>> hits;   // (pixel, path) of closest hits
+    for (const HitRecord& h : r.hits)
+        if (HitRecordKind(h.kind_light & 0xff) != HitRecordKind::Shadow && h.triangle >= 0)
+            hits.insert({h.pixel, h.path});
+    std::size_t checked = 0;
+    for (const HitRecord& h : r.hits) {
+        const auto kind = HitRecordKind(h.kind_light & 0xff);
+        if (kind == HitRecordKind::Primary) {
+            EXPECT_EQ(h.path, 1u);
+            continue;
+        }
+        const bool shadow = kind == HitRecordKind::Shadow;
+        const std::uint32_t parent = shadow ? h.path : h.path / 2;
+        if (shadow) {
+            EXPECT_LT(h.kind_light >> 8, scene.lights.size());
+        } else {
+            EXPECT_EQ(h.path % 2, kind == HitRecordKind::Refraction ? 1u : 0u);
+        }
+        EXPECT_TRUE(hits.count({h.pixel, parent})) << "pixel " << h.pixel << " path " << h.path;
+        ++checked;
+    }
+    EXPECT_GT(checked, 1000u);
 }
 
 // The whitted scene (its mirror and glass add several terms per pixel) with one bright light instead of its own.
