@@ -134,8 +134,9 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
         tests_per_pixel_ = Buffer();
     }
     if (!counts_) counts_ = Buffer(4 * sizeof(std::uint32_t));
-    // Queues of effects this variant does not simulate are not kept.
-    if (!secondary_) queues_.resize(std::min<std::size_t>(queues_.size(), 2));   // primary rays, shadow rays
+    // One queue per depth, sized now: queue() hands out references that must stay valid through the recursion.
+    // Queues of effects this variant does not simulate are not kept (without secondary rays: primary and shadow).
+    queues_.resize(std::size_t(secondary_ ? std::max(settings.max_depth, 0) : 0) + 2);
     counters_.clear();
     scene.bind();
     counters_.bind();
@@ -190,10 +191,8 @@ void Wavefront::bind_traversal() const {
     if (traversal_.bind) traversal_.bind();
 }
 
-Buffer& Wavefront::queue(int depth) {
-    if (queues_.size() <= std::size_t(depth)) queues_.resize(std::size_t(depth) + 1);
-    return queues_[std::size_t(depth)];
-}
+// The rays of depth `depth` (then the shadow rays spawned at depth - 1); depth <= max_depth + 1.
+Buffer& Wavefront::queue(int depth) { return queues_.at(std::size_t(depth)); }
 
 // Packs the flagged slots of `slots` (n records of stride_uints) into `out`, keeping their order: an exclusive scan
 // of the flags gives each used slot its place. Returns how many were used; with `split`, also how many of the
