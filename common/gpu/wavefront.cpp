@@ -74,12 +74,16 @@ std::size_t Wavefront::storage_block_limit() const {
 // least one light's shadow ray; more lights are shaded in several runs, see process_hits).
 void Wavefront::size_batches() {
     storage_limit_ = storage_block_limit();
-    const std::size_t per_pixel = std::max(kRadianceBytesPerPixel, sizeof(glm::vec4));
-    if (pixels_ * per_pixel > storage_limit_)
+    // Per-pixel sums in bands of rows of tiles (the whole image when it fits); the test counts for the whole image.
+    const std::size_t tile_row_bytes = kRadianceBytesPerPixel * std::size_t(settings_.width) * 8;
+    const std::size_t tests_bytes = settings_.record_tests_per_pixel ? pixels_ * sizeof(std::uint32_t) : 0;
+    if (tile_row_bytes > storage_limit_ || tests_bytes > storage_limit_)
         throw std::runtime_error("wavefront: a " + std::to_string(settings_.width) + "x" +
                                  std::to_string(settings_.height) + " image needs " +
-                                 std::to_string(pixels_ * per_pixel) + " bytes of per-pixel storage, more than the " +
+                                 std::to_string(std::max(tile_row_bytes, tests_bytes)) +
+                                 " bytes of per-pixel storage in one block, more than the " +
                                  std::to_string(storage_limit_) + "-byte storage block limit of this device");
+    band_tile_rows_ = storage_limit_ / tile_row_bytes;
     const std::size_t rays_per_hit = std::size_t(secondary_ ? 2 : 0) + (shadows_ ? 1 : 0);
     const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
     batch_ = storage_limit_ / per_hit;
@@ -123,10 +127,15 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     // Per-pixel buffers: this sample's radiance (fixed point) and the sum over samples.
     pixels_ = std::size_t(settings.width) * std::size_t(settings.height);
     size_batches();
-    radiance_.resize(pixels_ * kRadianceBytesPerPixel);
+    const std::size_t tile_rows = (std::size_t(settings.height) + 7) / 8;
+    const std::size_t band_rows = std::min(band_tile_rows_ * 8, std::size_t(settings.height));
+    radiance_.resize(band_rows * std::size_t(settings.width) * kRadianceBytesPerPixel);
     radiance_.clear_u32(0);
-    image_.resize(pixels_ * sizeof(glm::vec4));
-    image_.clear_u32(0);   // 0x00000000 is 0.0f
+    image_bands_.resize((tile_rows + band_tile_rows_ - 1) / band_tile_rows_);
+    for (std::size_t b = 0; b < image_bands_.size(); ++b) {
+        image_bands_[b].resize(band_pixels(b).second * sizeof(glm::vec4));
+        image_bands_[b].clear_u32(0);   // 0x00000000 is 0.0f
+    }
     if (settings.record_tests_per_pixel) {
         tests_per_pixel_.resize(pixels_ * sizeof(std::uint32_t));
         tests_per_pixel_.clear_u32(0);
@@ -217,22 +226,41 @@ std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned st
     return total;
 }
 
-// Primary batches: runs of whole 8x8 tiles, as many as one batch holds.
+// The pixels of band b: the first one and how many (whole rows; the last band may be shorter).
+std::pair<std::size_t, std::size_t> Wavefront::band_pixels(std::size_t band) const {
+    const std::size_t width = std::size_t(settings_.width), height = std::size_t(settings_.height);
+    const std::size_t first_row = std::min(band * band_tile_rows_ * 8, height);
+    const std::size_t end_row = std::min(first_row + band_tile_rows_ * 8, height);
+    return {first_row * width, (end_row - first_row) * width};
+}
+
+// One sample, band by band: primary batches are runs of whole 8x8 tiles of the band, as many as one batch holds.
+// A ray adds radiance only to its own pixel, so the band's sums are complete when its batches are done: resolve.
 template <class F>
 void Wavefront::for_each_tile_batch(F&& run_batch) {
     const std::size_t tiles_x = (std::size_t(settings_.width) + 7) / 8;
     const std::size_t tiles_y = (std::size_t(settings_.height) + 7) / 8;
-    const std::size_t tiles = tiles_x * tiles_y, per_batch = std::max<std::size_t>(batch_ / kTilePixels, 1);
-    for (std::size_t first = 0; first < tiles; first += per_batch)
-        run_batch(first, std::min(per_batch, tiles - first) * kTilePixels);
+    const std::size_t per_batch = std::max<std::size_t>(batch_ / kTilePixels, 1);
+    for (std::size_t band = 0; band < image_bands_.size(); ++band) {
+        const unsigned pixel_first = unsigned(band_pixels(band).first);
+        for (const Program* p : {&shade_, &shadow_collect_, &trace_collect_})
+            if (*p) p->set("wf_pixel_first", pixel_first);
+        const std::size_t first_tile = band * band_tile_rows_ * tiles_x;
+        const std::size_t end_tile = std::min(first_tile + band_tile_rows_ * tiles_x, tiles_x * tiles_y);
+        for (std::size_t first = first_tile; first < end_tile; first += per_batch)
+            run_batch(first, std::min(per_batch, end_tile - first) * kTilePixels, pixel_first);
+        resolve(band);
+    }
+    ++samples_;
 }
 
 void Wavefront::shade_sample(const Program& primary_pass) {
-    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots) {
+    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots, unsigned pixel_first) {
         hit_slots_.reserve(slots * sizeof(WavefrontHit));
         flags_.reserve(slots * sizeof(std::uint32_t));
         set_uniforms(primary_pass);
         primary_pass.set("wf_tile_first", unsigned(first_tile));
+        primary_pass.set("wf_pixel_first", pixel_first);
         primary_pass.set("wf_input_count", unsigned(slots));
         hit_slots_.bind(kBindingHits);
         flags_.bind(kBindingFlags);
@@ -245,8 +273,6 @@ void Wavefront::shade_sample(const Program& primary_pass) {
         const std::size_t hits = compact(hit_slots_, slots, sizeof(WavefrontHit) / 4, hits_);
         if (hits > 0) process_hits(hits, 0);
     });
-    resolve();
-    ++samples_;
 }
 
 void Wavefront::trace_camera_sample(glm::vec2 offset) {
@@ -263,7 +289,7 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
         set_uniforms(trace_collect_);
     }
     camera_.set("wf_sample_offset", offset);
-    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots) {
+    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots, unsigned) {
         ray_slots_.reserve(slots * sizeof(WavefrontRay));
         flags_.reserve(slots * sizeof(std::uint32_t));
         camera_.set("wf_tile_first", unsigned(first_tile));
@@ -277,8 +303,6 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
         const std::size_t count = compact(ray_slots_, slots, sizeof(WavefrontRay) / 4, rays);
         run_rays(rays, count, 0);
     });
-    resolve();
-    ++samples_;
 }
 
 // Shades `hits` hits (in hits_) of depth `depth`: their shadow rays are traced right away, their reflection and
@@ -425,10 +449,12 @@ void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t c
     }
 }
 
-void Wavefront::resolve() {
+void Wavefront::resolve(std::size_t band) {
     radiance_.bind(kBindingRadiance);
-    image_.bind(kBindingImage);
-    resolve_.dispatch_threads(pixels_);
+    image_bands_[band].bind(kBindingImage);
+    const std::size_t pixels = band_pixels(band).second;
+    resolve_.set("wf_input_count", unsigned(pixels));
+    resolve_.dispatch_threads(pixels);
     record_pass("resolve");
     pass_barrier();
     check_gl("wavefront: resolve pass");
@@ -436,8 +462,12 @@ void Wavefront::resolve() {
 
 Image Wavefront::finish_frame(RayCounters& counters) {
     Image image(settings_.width, settings_.height);
-    const std::vector<glm::vec4> sums = image_.download<glm::vec4>(pixels_);
-    for (std::size_t i = 0; i < pixels_; ++i) image.pixels[i] = glm::vec3(sums[i]) / float(std::max(samples_, 1));
+    for (std::size_t band = 0; band < image_bands_.size(); ++band) {
+        const auto [first, count] = band_pixels(band);
+        const std::vector<glm::vec4> sums = image_bands_[band].download<glm::vec4>(count);
+        for (std::size_t i = 0; i < count; ++i)
+            image.pixels[first + i] = glm::vec3(sums[i]) / float(std::max(samples_, 1));
+    }
     counters = counters_.ray_counters();
     // Primary rays are one per pixel and sample, whether the stage rasterized or traced them.
     counters.rays[int(RayKind::Primary)] = std::uint64_t(pixels_) * std::uint64_t(samples_);

@@ -35,6 +35,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -153,6 +154,7 @@ private:
     void compile_programs();
     std::size_t storage_block_limit() const;
     void size_batches();
+    std::pair<std::size_t, std::size_t> band_pixels(std::size_t band) const;
     template <class F> void for_each_tile_batch(F&& run_batch);
     std::uint32_t compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out,
                           std::size_t split = 0, std::uint32_t* before_split = nullptr);
@@ -165,7 +167,7 @@ private:
     void run_collect(const Program& collect, Buffer& rays, std::size_t first, std::size_t count);
     void record_primary_slots(std::size_t slots);
     void record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow);
-    void resolve();
+    void resolve(std::size_t band);
     void bind_traversal() const;
 
     Traversal traversal_;
@@ -175,6 +177,7 @@ private:
     unsigned lights_ = 0;
     bool shadows_ = false, secondary_ = false;
     std::size_t storage_limit_ = 0, batch_ = 0;
+    std::size_t band_tile_rows_ = 0;   // rows of 8x8 tiles whose radiance sums fit one storage block
     ShaderDefines defines_;
     std::string compiled_key_;
     Program shade_, shadow_, trace_, shadow_collect_, trace_collect_, resolve_, camera_, compact_;
@@ -182,7 +185,8 @@ private:
     // Shared by all depths: the hits being shaded, the output slots of a pass with their flags and scan, results.
     Buffer hits_, hit_slots_, ray_slots_, flags_, offsets_, counts_, results_;
     std::vector<Buffer> queues_;   // queues_[d]: the rays of depth d (then the shadow rays of depth d - 1)
-    Buffer radiance_, image_, tests_per_pixel_;
+    Buffer radiance_, tests_per_pixel_;   // radiance_: one band of rows (wf_accumulate)
+    std::vector<Buffer> image_bands_;     // the float sum over samples, band by band
     CounterBuffer counters_;
     std::vector<HitRecord> hit_records_;
     std::vector<std::string> pass_order_;

@@ -395,17 +395,18 @@ TEST(StorageLimit, TinyLimitGivesIdenticalImageCountsAndHits) {
     const Scene scene = many_lights_scene(64, 48);
     const RenderSettings settings = settings_for(scene, 64, 48);
     const FrameResult unlimited = render_hybrid(scene, settings, kBruteForce);
-    // 64x48 needs 110592 bytes of radiance sums; 128 KiB holds 682 hits per batch and one light's shadow rays per
-    // shade run next to the reflection and refraction slots.
-    const FrameResult tiny = render_hybrid(scene, settings, kBruteForce, 128 << 10);
+    // 48 KiB: the radiance sums of 2 of the 6 rows of 8x8 tiles (18432 bytes per row), 256 hits per batch, and one
+    // light's shadow rays per shade run next to the reflection and refraction slots.
+    const FrameResult tiny = render_hybrid(scene, settings, kBruteForce, 48 << 10);
     expect_same_frame(unlimited, tiny, false);
     EXPECT_GT(unlimited.stats.counters.rays[int(RayKind::Shadow)], 0u);
-    // It did run in batches: several primary batches, and shade runs per light.
+    // It did run in batches: bands of rows, several primary batches per band, and shade runs per light.
     const auto dispatches = [](const FrameResult& r, const char* pass) {
         return int(r.extra["pass_dispatches"][pass]);
     };
     EXPECT_EQ(dispatches(unlimited, "primary_hits"), 1);
-    EXPECT_EQ(dispatches(tiny, "primary_hits"), 5);   // 48 tiles, 10 per batch
+    EXPECT_EQ(dispatches(tiny, "resolve"), 3);
+    EXPECT_EQ(dispatches(tiny, "primary_hits"), 12);   // 16 tiles per band, 4 per batch
     EXPECT_GT(dispatches(tiny, "shade"), 2 * dispatches(unlimited, "shade"));
 }
 
@@ -427,7 +428,7 @@ TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
     const Scene scene = many_lights_scene(64, 48);
     const RenderSettings settings = settings_for(scene, 64, 48);
     const FrameResult unlimited = render_traced(scene, settings, 0);
-    const FrameResult tiny = render_traced(scene, settings, 128 << 10);
+    const FrameResult tiny = render_traced(scene, settings, 48 << 10);
     expect_same_frame(unlimited, tiny, false);
     std::size_t primaries = 0;
     for (const HitRecord& h : unlimited.hits)
@@ -438,7 +439,7 @@ TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
 TEST(StorageLimit, ImageBeyondTheLimitIsRefusedWithAClearError) {
     const Scene scene = builtin("diffuse", 64, 48);
     try {
-        render_hybrid(scene, settings_for(scene, 64, 48), kBruteForce, 64 << 10);
+        render_hybrid(scene, settings_for(scene, 64, 48), kBruteForce, 16 << 10);   // a row of tiles: 18432
         FAIL() << "no error";
     } catch (const std::exception& e) {
         EXPECT_NE(std::string(e.what()).find("storage block limit"), std::string::npos) << e.what();

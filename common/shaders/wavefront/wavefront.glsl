@@ -66,7 +66,8 @@ layout(std430, binding = WF_BINDING_RAY_SLOTS) buffer WfRaySlots { WavefrontRay 
 layout(std430, binding = WF_BINDING_FLAGS) buffer WfFlags { uint wf_flags[]; };
 // Radiance of the current sample: per pixel and channel a 96-bit fixed-point number (see wf_accumulate).
 layout(std430, binding = WF_BINDING_RADIANCE) buffer WfRadiance { uint wf_radiance[]; };
-// Sum over the samples of the pixel's radiance (rgb; a = unused), float, written only by resolve.comp.
+// Sum over the samples of the pixel's radiance (rgb; a = unused), float, written only by resolve.comp (for the band
+// of rows of wf_radiance).
 layout(std430, binding = WF_BINDING_IMAGE) buffer WfImage { vec4 wf_image[]; };
 #ifdef RECORD_TESTS_PER_PIXEL
 // Ray/triangle tests of all rays of each pixel's tree (--heatmap).
@@ -85,6 +86,7 @@ uniform float wf_epsilon;           // --epsilon
 uniform ivec2 wf_image_size;        // width, height
 uniform vec2 wf_sample_offset;      // where in the pixel this sample's primary rays pass (pixel_samples.h)
 uniform uint wf_tile_first;         // primary passes: the first 8x8 tile of this batch (see wf_tile_pixel)
+uniform uint wf_pixel_first;        // the first pixel of the band of rows wf_radiance holds (see wf_accumulate)
 
 uint wf_depth(WavefrontRay r) { return r.depth_kind & 0xffffu; }
 uint wf_kind(WavefrontRay r) { return r.depth_kind >> 16; }
@@ -133,7 +135,8 @@ bool wf_tile_pixel(uint slot, out ivec2 p) {
 // and the carry goes to the next limb. Integer addition is associative, so the sum does not depend on the order the
 // GPU runs the threads in. Bit 31 of the top limb (2^63) is sticky: a sum that reaches it, or a carry out of the top
 // limb, sets it, and resolve.comp then gives the saturated value WF_RADIANCE_MAX, never a wrapped one. Negative and
-// NaN contributions add nothing (scenes have non-negative colours and lights); +Inf saturates.
+// NaN contributions add nothing (scenes have non-negative colours and lights); +Inf saturates. wf_radiance holds a
+// band of image rows starting at pixel wf_pixel_first (the whole image unless it would not fit one storage block).
 const float WF_RADIANCE_MAX = 9.2233720e18;   // 2^63
 void wf_add_fixed(uint base, float c) {
     if (!(c > 0.0)) return;   // also NaN
@@ -166,9 +169,10 @@ void wf_add_fixed(uint base, float c) {
     if (carry != 0u) atomicOr(wf_radiance[base + 2u], 0x80000000u);
 }
 void wf_accumulate(uint pixel, vec3 c) {
-    wf_add_fixed(9u * pixel, c.r);
-    wf_add_fixed(9u * pixel + 3u, c.g);
-    wf_add_fixed(9u * pixel + 6u, c.b);
+    const uint base = 9u * (pixel - wf_pixel_first);
+    wf_add_fixed(base, c.r);
+    wf_add_fixed(base + 3u, c.g);
+    wf_add_fixed(base + 6u, c.b);
 }
 
 // Counting ray/triangle tests: a traversal calls wf_count_tests(n) for the tests it makes; each pass adds the
