@@ -1,7 +1,7 @@
 // Stage 02: the raster/ray-tracing hybrid (Roger, Assarsson & Holzschuch 2007, "Whitted Ray-Tracing for Dynamic
 // Scenes using a Ray-Space Hierarchy on the GPU"; Reis). Primary rays give exactly what rasterization gives, so
 // the GPU rasterizes them into a G-buffer, and only the secondary rays (shadow, reflection, refraction) are traced,
-// by the wavefront pipeline of common/gpu/wavefront.h with a brute-force traversal (shaders/brute_force.glsl).
+// by the wavefront pipeline of common/gpu/wavefront.h with a brute-force traversal (common/shaders/brute_force.glsl).
 // Context, options, window, timers and stats come from common/gpu/gpu_stage.h; this is the per-frame code.
 #pragma once
 

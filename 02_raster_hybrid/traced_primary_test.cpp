@@ -29,7 +29,7 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
 
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
-    gpu::Wavefront wavefront({"02_raster_hybrid/brute_force.glsl", {}, {}});
+    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
     wavefront.trace_camera_sample(glm::vec2(0.5f));
     RayCounters gpu_counters;

@@ -103,21 +103,17 @@ std::vector<std::uint32_t> GBuffer::read_triangle_ids() const {
     return ids;
 }
 
-void GBuffer::push_primary_hits(Wavefront& wavefront, int width, int height, glm::vec2 offset) {
+void GBuffer::shade_sample(Wavefront& wavefront, glm::vec2 offset) {
     std::string key;
     for (const auto& [k, v] : wavefront.defines()) key.append(k).append("=").append(v).append(";");
     if (key != primary_hits_key_) {
         primary_hits_ = Program::compute("raster/primary_hits.comp", wavefront.defines());
         primary_hits_key_ = key;
     }
-    wavefront.set_uniforms(primary_hits_);
     primary_hits_.set("wf_sample_offset", offset);
-    wavefront.begin_primary_hits(std::size_t(width) * std::size_t(height));
     glBindTextureUnit(kWavefrontFirstFreeTextureUnit, ids_);
-    const glm::uvec3 local = primary_hits_.local_size();
-    primary_hits_.dispatch((unsigned(width) + local.x - 1) / local.x, (unsigned(height) + local.y - 1) / local.y);
-    wavefront.record_pass("primary_hits");
-    check_gl("primary hits pass");
+    wavefront.shade_sample(primary_hits_);
+    check_gl("G-buffer: shade sample");
 }
 
 }  // namespace rt::gpu

@@ -3,7 +3,8 @@
 //  1. render(): rasterize the scene into a G-buffer. Each pixel gets the index of the nearest triangle at its sample
 //     position (R32UI, triangle + 1, 0 = none) and its depth (32-bit float, reversed). That is exactly what a
 //     primary ray through the pixel would find, for the price of one draw call (shaders raster/gbuffer.vert, .frag).
-//  2. push_primary_hits(): turn each pixel into a primary hit of the wavefront pipeline (raster/primary_hits.comp).
+//  2. shade_sample(): turn each pixel into a primary hit of the wavefront pipeline (raster/primary_hits.comp) and
+//     let the pipeline shade them and trace every bounce.
 #pragma once
 
 #include <cstdint>
@@ -35,10 +36,11 @@ public:
     std::vector<std::uint32_t> read_triangle_ids() const;
     GLuint triangle_id_texture() const { return ids_; }
 
-    // Pass 2: the pixels of the G-buffer become the pipeline's primary hits (the camera ray of each pixel
-    // intersected with its triangle, so barycentrics match the CPU's); empty pixels add the background. Compiled
-    // with the pipeline's defines. The pipeline's begin_frame() must have run and the scene must be bound.
-    void push_primary_hits(Wavefront& wavefront, int width, int height, glm::vec2 offset);
+    // Pass 2 and on: the pixels of the G-buffer become the pipeline's primary hits (the camera ray of each pixel
+    // intersected with its triangle, so barycentrics match the CPU's; empty pixels add the background), in the
+    // pipeline's primary order, and Wavefront::shade_sample does the rest of the sample. Compiled with the
+    // pipeline's defines. The pipeline's begin_frame() must have run and the scene must be bound.
+    void shade_sample(Wavefront& wavefront, glm::vec2 offset);
 
 private:
     void resize(int width, int height);

@@ -76,7 +76,7 @@ FrameResult GpuStage::render(const Scene& scene, const RenderSettings& settings)
     s.wavefront.begin_frame(s.scene, settings);   // compiles the passes when the variant changes
     build(scene, settings);
     for (const glm::vec2& offset : pixel_sample_offsets(settings.spp)) render_sample(scene, settings, offset);
-    result.image = s.wavefront.finish_frame(result.stats.counters);
+    s.wavefront.finish_frame(result);   // image, counters, and the hits and per-pixel tests when asked for
 
     // Stats every GPU stage reports.
     const std::vector<std::pair<std::string, double>> phases = s.timer.results();

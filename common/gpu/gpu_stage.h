@@ -54,7 +54,8 @@ protected:
     // timer().scope("build").
     virtual void build(const Scene& scene, const RenderSettings& settings);
     // One sample through `offset` in each pixel (0.5, 0.5 = the centre): the primary hits, then
-    // wavefront().shade_sample(), or wavefront().trace_camera_sample(offset) for both. Time the stage's own passes
+    // wavefront().shade_sample(primary_pass) (or GBuffer::shade_sample), or wavefront().trace_camera_sample(offset)
+    // for both. Time the stage's own passes
     // with timer().scope("raster"), ...
     virtual void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) = 0;
     // True when the primary rays are rasterized, not traced (rays.rasterized, and left out of mrays_per_s).

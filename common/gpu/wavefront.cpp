@@ -1,7 +1,9 @@
 #include "wavefront.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include "bindings.h"
@@ -13,15 +15,19 @@ namespace {
 // Binding points of wavefront.glsl.
 constexpr unsigned kBindingRaysIn = kBindingStageFirst + 0;
 constexpr unsigned kBindingHits = kBindingStageFirst + 1;
-constexpr unsigned kBindingRaysOut = kBindingStageFirst + 2;
-constexpr unsigned kBindingShadowRays = kBindingStageFirst + 3;
+constexpr unsigned kBindingRaySlots = kBindingStageFirst + 2;
+constexpr unsigned kBindingFlags = kBindingStageFirst + 3;
 constexpr unsigned kBindingRadiance = kBindingStageFirst + 4;
-constexpr unsigned kBindingQueueCounts = kBindingStageFirst + 5;
+constexpr unsigned kBindingResults = kBindingStageFirst + 5;
 constexpr unsigned kBindingImage = kBindingStageFirst + 6;
+constexpr unsigned kBindingTestsPerPixel = kBindingStageFirst + 7;
+static_assert(kWavefrontBindingRaysIn == kBindingRaysIn && kWavefrontBindingResults == kBindingResults &&
+              kWavefrontBindingTestsPerPixel == kBindingTestsPerPixel);
 static_assert(kWavefrontBindingTraversalFirst == kBindingStageFirst + 8);
 
-// Indices into the queue counters (wavefront.glsl: WfQueueCounts).
-constexpr unsigned kQueueHits = 0, kQueueRaysOut = 1, kQueueShadowRays = 2;
+constexpr std::size_t kTilePixels = 64;                  // 8x8 tiles (wavefront.glsl: wf_tile_pixel)
+constexpr std::size_t kRadianceBytesPerPixel = 9 * 4;    // 3 channels x 3 limbs (wf_accumulate)
+constexpr std::uint32_t kNoPixel = 0xffffffffu;
 
 // Between passes: shader writes become visible to the next pass, to read-backs and to buffer clears.
 void pass_barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
@@ -35,13 +41,66 @@ struct PassTimer {
     void end() { scope.reset(); }
 };
 
-void bind_if(const Buffer& b, unsigned binding) {
-    if (b) b.bind(binding);
+std::size_t env_storage_limit() {
+    const char* text = std::getenv("RT_MAX_SSBO_BYTES");
+    if (!text || !*text) return 0;
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(text, &end, 10);
+    if (*end != '\0' || v == 0) throw std::runtime_error("RT_MAX_SSBO_BYTES: expected a positive number of bytes");
+    return std::size_t(v);
+}
+
+HitRecord make_record(const WavefrontRay& ray, int sample, HitRecordKind kind, std::int32_t triangle, float t) {
+    HitRecord r;
+    r.sample = std::uint32_t(sample);
+    r.pixel = ray.pixel;
+    r.path = ray.path;
+    r.kind_light = std::uint32_t(kind) | (kind == HitRecordKind::Shadow ? ray.light << 8 : 0u);
+    r.triangle = triangle;
+    r.t = t;
+    for (int k = 0; k < 3; ++k) {
+        r.origin[k] = ray.origin[k];
+        r.direction[k] = ray.direction[k];
+    }
+    return r;
 }
 
 }  // namespace
 
-Wavefront::Wavefront(Traversal traversal) : traversal_(std::move(traversal)), counters_(16) {}
+Wavefront::Wavefront(Traversal traversal)
+    : traversal_(std::move(traversal)), compact_(Program::compute("wavefront/compact_records.comp")), counters_(16) {}
+
+std::size_t Wavefront::storage_block_limit() const {
+    GLint64 gl_limit = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &gl_limit);
+    std::size_t limit = gl_limit > 0 ? std::size_t(gl_limit) : std::size_t(128) << 20;
+    if (max_storage_bytes > 0) limit = std::min(limit, max_storage_bytes);
+    if (const std::size_t env = env_storage_limit(); env > 0) limit = std::min(limit, env);
+    return limit;
+}
+
+// How many hits (or rays) one batch holds: every buffer a batch binds must fit the storage limit. Per hit of a
+// batch: the hit (80 bytes), its hit slot, and its output slots (64 bytes per ray: reflection, refraction and at
+// least one light's shadow ray; more lights are shaded in several runs, see process_hits).
+void Wavefront::size_batches() {
+    storage_limit_ = storage_block_limit();
+    // Per-pixel sums in bands of rows of tiles (the whole image when it fits); the test counts for the whole image.
+    const std::size_t tile_row_bytes = kRadianceBytesPerPixel * std::size_t(settings_.width) * 8;
+    const std::size_t tests_bytes = settings_.record_tests_per_pixel ? pixels_ * sizeof(std::uint32_t) : 0;
+    if (tile_row_bytes > storage_limit_ || tests_bytes > storage_limit_)
+        throw std::runtime_error("wavefront: a " + std::to_string(settings_.width) + "x" +
+                                 std::to_string(settings_.height) + " image needs " +
+                                 std::to_string(std::max(tile_row_bytes, tests_bytes)) +
+                                 " bytes of per-pixel storage in one block, more than the " +
+                                 std::to_string(storage_limit_) + "-byte storage block limit of this device");
+    band_tile_rows_ = storage_limit_ / tile_row_bytes;
+    const std::size_t rays_per_hit = std::size_t(secondary_ ? 2 : 0) + (shadows_ ? 1 : 0);
+    const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
+    batch_ = storage_limit_ / per_hit;
+    if (batch_ < kTilePixels)
+        throw std::runtime_error("wavefront: the storage block limit (" + std::to_string(storage_limit_) +
+                                 " bytes) cannot hold one 8x8 tile of rays");
+}
 
 void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& settings) {
     settings_ = settings;
@@ -49,6 +108,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     samples_ = 0;
     pass_order_.clear();
     dispatches_.clear();
+    hit_records_.clear();
 
     // The variant: only the effects the scene calls for (settings.effects is already resolved from --effects).
     // Reflection and refraction rays need a bounce to go to; shadow rays need a light.
@@ -61,7 +121,8 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     defines.insert_or_assign("RT_INTERSECT_METHOD", std::string(settings.intersect == IntersectMethod::Watertight
                                                                     ? "RT_INTERSECT_WATERTIGHT"
                                                                     : "RT_INTERSECT_MOLLER"));
-    if (count_tests) defines.insert_or_assign("COUNT_TESTS", std::string("1"));
+    if (count_tests || settings.record_tests_per_pixel) defines.insert_or_assign("COUNT_TESTS", std::string("1"));
+    if (settings.record_tests_per_pixel) defines.insert_or_assign("RECORD_TESTS_PER_PIXEL", std::string("1"));
     for (const auto& [k, v] : traversal_.defines) defines.insert_or_assign(k, v);
     std::string key;
     for (const auto& [k, v] : defines) key.append(k).append("=").append(v).append(";");
@@ -70,19 +131,31 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
         compiled_key_ = key;
         compile_programs();
     }
-    for (const Program* p : {&shade_, &shadow_, &trace_, &resolve_, &camera_})
+    for (const Program* p : {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_})
         if (*p) set_uniforms(*p);
 
     // Per-pixel buffers: this sample's radiance (fixed point) and the sum over samples.
     pixels_ = std::size_t(settings.width) * std::size_t(settings.height);
-    radiance_.resize(pixels_ * 3 * sizeof(std::int32_t));
+    size_batches();
+    const std::size_t tile_rows = (std::size_t(settings.height) + 7) / 8;
+    const std::size_t band_rows = std::min(band_tile_rows_ * 8, std::size_t(settings.height));
+    radiance_.resize(band_rows * std::size_t(settings.width) * kRadianceBytesPerPixel);
     radiance_.clear_u32(0);
-    image_.resize(pixels_ * sizeof(glm::vec4));
-    image_.clear_u32(0);   // 0x00000000 is 0.0f
-    if (!queue_counts_) queue_counts_ = Buffer(4 * sizeof(std::uint32_t));
-    // Queues of effects this variant does not simulate are not kept.
-    if (!shadows_) shadow_rays_ = Buffer();
-    if (!secondary_) rays_out_ = Buffer();
+    image_bands_.resize((tile_rows + band_tile_rows_ - 1) / band_tile_rows_);
+    for (std::size_t b = 0; b < image_bands_.size(); ++b) {
+        image_bands_[b].resize(band_pixels(b).second * sizeof(glm::vec4));
+        image_bands_[b].clear_u32(0);   // 0x00000000 is 0.0f
+    }
+    if (settings.record_tests_per_pixel) {
+        tests_per_pixel_.resize(pixels_ * sizeof(std::uint32_t));
+        tests_per_pixel_.clear_u32(0);
+    } else {
+        tests_per_pixel_ = Buffer();
+    }
+    if (!counts_) counts_ = Buffer(4 * sizeof(std::uint32_t));
+    // One queue per depth, sized now: queue() hands out references that must stay valid through the recursion.
+    // Queues of effects this variant does not simulate are not kept (without secondary rays: primary and shadow).
+    queues_.resize(std::size_t(secondary_ ? std::max(settings.max_depth, 0) : 0) + 2);
     counters_.clear();
     scene.bind();
     counters_.bind();
@@ -106,14 +179,16 @@ Program Wavefront::compile(const std::string& pass, bool with_traversal) const {
 void Wavefront::compile_programs() {
     shade_ = compile("shade.comp", false);
     resolve_ = compile("resolve.comp", false);
-    shadow_ = shadows_ ? compile("shadow.comp", true) : Program();
-    trace_ = secondary_ ? compile("trace.comp", true) : Program();
+    shadow_ = shadows_ && !traversal_.shadow_batch ? compile("shadow.comp", true) : Program();
+    shadow_collect_ = shadows_ ? compile("shadow_collect.comp", false) : Program();
+    trace_ = secondary_ && !traversal_.trace_batch ? compile("trace.comp", true) : Program();
+    trace_collect_ = secondary_ ? compile("trace_collect.comp", false) : Program();
     camera_ = Program();   // compiled on first use (stages that trace primary rays)
 }
 
 std::vector<std::string> Wavefront::programs() const {
     std::vector<std::string> names;
-    for (const Program* p : {&shade_, &shadow_, &trace_, &resolve_, &camera_})
+    for (const Program* p : {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_})
         if (*p) names.push_back(p->name());
     return names;
 }
@@ -135,20 +210,79 @@ void Wavefront::bind_traversal() const {
     if (traversal_.bind) traversal_.bind();
 }
 
-void Wavefront::clear_queue_counts() { queue_counts_.clear_u32(0); }
+// The rays of depth `depth` (then the shadow rays spawned at depth - 1); depth <= max_depth + 1.
+Buffer& Wavefront::queue(int depth) { return queues_.at(std::size_t(depth)); }
 
-std::uint32_t Wavefront::read_queue_count(unsigned index) const {
-    return queue_counts_.download_value<std::uint32_t>(index);
+// Packs the flagged slots of `slots` (n records of stride_uints) into `out`, keeping their order: an exclusive scan
+// of the flags gives each used slot its place. Returns how many were used; with `split`, also how many of the
+// first `split` slots were (the scan's value at split).
+std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out,
+                                 std::size_t split, std::uint32_t* before_split) {
+    offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
+    scan_.exclusive_flags(flags_, offsets_, n, &counts_, 0);
+    const std::uint32_t total = counts_.download_value<std::uint32_t>(0);
+    if (before_split) *before_split = split < n ? offsets_.download_value<std::uint32_t>(split) : total;
+    if (total == 0) return 0;
+    out.reserve(std::size_t(total) * stride_uints * sizeof(std::uint32_t));
+    flags_.bind(kBindingCompactFlags);
+    offsets_.bind(kBindingCompactOffsets);
+    slots.bind(kBindingCompactValues);
+    out.bind(kBindingCompactOut);
+    compact_.set("n", unsigned(n));
+    compact_.set("stride", stride_uints);
+    compact_.dispatch_threads(n * stride_uints);
+    pass_barrier();
+    check_gl("wavefront: compaction");
+    return total;
 }
 
-void Wavefront::begin_primary_hits(std::size_t max_hits) {
-    hits_.reserve(std::max<std::size_t>(max_hits, 1) * sizeof(WavefrontHit));
-    clear_queue_counts();
-    pass_barrier();
-    hits_.bind(kBindingHits);
-    queue_counts_.bind(kBindingQueueCounts);
-    radiance_.bind(kBindingRadiance);
-    counters_.bind();
+// The pixels of band b: the first one and how many (whole rows; the last band may be shorter).
+std::pair<std::size_t, std::size_t> Wavefront::band_pixels(std::size_t band) const {
+    const std::size_t width = std::size_t(settings_.width), height = std::size_t(settings_.height);
+    const std::size_t first_row = std::min(band * band_tile_rows_ * 8, height);
+    const std::size_t end_row = std::min(first_row + band_tile_rows_ * 8, height);
+    return {first_row * width, (end_row - first_row) * width};
+}
+
+// One sample, band by band: primary batches are runs of whole 8x8 tiles of the band, as many as one batch holds.
+// A ray adds radiance only to its own pixel, so the band's sums are complete when its batches are done: resolve.
+template <class F>
+void Wavefront::for_each_tile_batch(F&& run_batch) {
+    const std::size_t tiles_x = (std::size_t(settings_.width) + 7) / 8;
+    const std::size_t tiles_y = (std::size_t(settings_.height) + 7) / 8;
+    const std::size_t per_batch = std::max<std::size_t>(batch_ / kTilePixels, 1);
+    for (std::size_t band = 0; band < image_bands_.size(); ++band) {
+        const unsigned pixel_first = unsigned(band_pixels(band).first);
+        for (const Program* p : {&shade_, &shadow_collect_, &trace_collect_})
+            if (*p) p->set("wf_pixel_first", pixel_first);
+        const std::size_t first_tile = band * band_tile_rows_ * tiles_x;
+        const std::size_t end_tile = std::min(first_tile + band_tile_rows_ * tiles_x, tiles_x * tiles_y);
+        for (std::size_t first = first_tile; first < end_tile; first += per_batch)
+            run_batch(first, std::min(per_batch, end_tile - first) * kTilePixels, pixel_first);
+        resolve(band);
+    }
+    ++samples_;
+}
+
+void Wavefront::shade_sample(const Program& primary_pass) {
+    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots, unsigned pixel_first) {
+        hit_slots_.reserve(slots * sizeof(WavefrontHit));
+        flags_.reserve(slots * sizeof(std::uint32_t));
+        set_uniforms(primary_pass);
+        primary_pass.set("wf_tile_first", unsigned(first_tile));
+        primary_pass.set("wf_pixel_first", pixel_first);
+        primary_pass.set("wf_input_count", unsigned(slots));
+        hit_slots_.bind(kBindingHits);
+        flags_.bind(kBindingFlags);
+        radiance_.bind(kBindingRadiance);
+        primary_pass.dispatch_threads(slots);
+        record_pass("primary_hits");
+        pass_barrier();
+        check_gl("wavefront: primary hits");
+        if (settings_.record_hits) record_primary_slots(slots);
+        const std::size_t hits = compact(hit_slots_, slots, sizeof(WavefrontHit) / 4, hits_);
+        if (hits > 0) process_hits(hits, 0);
+    });
 }
 
 void Wavefront::trace_camera_sample(glm::vec2 offset) {
@@ -156,96 +290,187 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
         camera_ = compile("camera_rays.comp", false);
         set_uniforms(camera_);
     }
-    if (!trace_) {
+    if (!trace_ && !traversal_.trace_batch) {
         trace_ = compile("trace.comp", true);
         set_uniforms(trace_);
     }
-    rays_in_.reserve(pixels_ * sizeof(WavefrontRay));
-    rays_in_.bind(kBindingRaysIn);
-    camera_.set("wf_sample_offset", offset);
-    const glm::uvec3 local = camera_.local_size();
-    PassTimer timed(timer, "camera_rays");
-    camera_.dispatch((unsigned(settings_.width) + local.x - 1) / local.x,
-                     (unsigned(settings_.height) + local.y - 1) / local.y);
-    record_pass("camera_rays");
-    pass_barrier();
-    timed.end();
-    run_trace(pixels_);
-    shade_sample();
-}
-
-void Wavefront::shade_sample() {
-    pass_barrier();
-    std::size_t hits = read_queue_count(kQueueHits);
-    // One bounce per iteration: shade the hits, trace their shadow rays, then their reflection/refraction rays.
-    // The shade pass spawns no ray at depth max_depth, so the loop ends after at most max_depth + 1 shade passes.
-    while (hits > 0) {
-        run_shade(hits);
-        const std::vector<std::uint32_t> counts = queue_counts_.download<std::uint32_t>(4);
-        if (counts[kQueueShadowRays] > 0) run_shadow(counts[kQueueShadowRays]);
-        const std::size_t rays = counts[kQueueRaysOut];
-        if (rays == 0) break;
-        std::swap(rays_in_, rays_out_);   // this bounce's output is the next trace pass' input
-        run_trace(rays);
-        hits = read_queue_count(kQueueHits);
+    if (!trace_collect_) {
+        trace_collect_ = compile("trace_collect.comp", false);
+        set_uniforms(trace_collect_);
     }
-    resolve();
-    ++samples_;
+    camera_.set("wf_sample_offset", offset);
+    for_each_tile_batch([&](std::size_t first_tile, std::size_t slots, unsigned) {
+        ray_slots_.reserve(slots * sizeof(WavefrontRay));
+        flags_.reserve(slots * sizeof(std::uint32_t));
+        camera_.set("wf_tile_first", unsigned(first_tile));
+        camera_.set("wf_input_count", unsigned(slots));
+        ray_slots_.bind(kBindingRaySlots);
+        flags_.bind(kBindingFlags);
+        PassTimer timed(timer, "camera_rays");
+        camera_.dispatch_threads(slots);
+        record_pass("camera_rays");
+        pass_barrier();
+        timed.end();
+        Buffer& rays = queue(0);
+        const std::size_t count = compact(ray_slots_, slots, sizeof(WavefrontRay) / 4, rays);
+        run_rays(rays, count, 0);
+    });
 }
 
-void Wavefront::run_shade(std::size_t hits) {
+// Shades `hits` hits (in hits_) of depth `depth`: their shadow rays are traced right away, their reflection and
+// refraction rays go to queue(depth + 1) and are traced (with all their descendants) before this returns.
+// Output slots of one shade run: [reflections | refractions] (secondary_) then one block of `hits` slots per light.
+// When the lights' blocks do not all fit the storage limit, the lights are shaded in several runs; the last one
+// also adds the local terms and spawns the reflection and refraction rays.
+void Wavefront::process_hits(std::size_t hits, int depth) {
+    const std::size_t secondary_slots = secondary_ ? 2 * hits : 0;
+    Buffer& out = queue(depth + 1);
+    std::uint32_t secondary = 0;
+    if (!shadows_) {
+        run_shade(hits, 0, lights_, true, 0);   // unshadowed lights are summed in the shade pass
+        if (secondary_slots > 0) secondary = compact(ray_slots_, secondary_slots, sizeof(WavefrontRay) / 4, out);
+    } else {
+        const std::size_t slots_fit = storage_limit_ / sizeof(WavefrontRay);
+        const unsigned per_run = unsigned(std::clamp<std::size_t>((slots_fit - secondary_slots) / hits, 1, lights_));
+        for (unsigned first = 0; first < lights_; first += per_run) {
+            const unsigned count = std::min(per_run, lights_ - first);
+            const bool last = first + count == lights_;
+            const std::size_t base = last ? secondary_slots : 0;
+            run_shade(hits, first, count, last, base);
+            std::uint32_t before = 0;
+            const std::uint32_t total =
+                compact(ray_slots_, base + count * hits, sizeof(WavefrontRay) / 4, out, base, &before);
+            if (total > before) run_shadow(out, before, total - before);
+            if (last) secondary = before;
+        }
+    }
+    if (secondary > 0) run_rays(out, secondary, depth + 1);
+}
+
+void Wavefront::run_shade(std::size_t hits, unsigned light_first, unsigned light_count, bool local,
+                          std::size_t shadow_base) {
     const PassTimer timed(timer, "shade");
-    // Every hit spawns at most one reflection and one refraction ray, and one shadow ray per light.
-    if (secondary_) rays_out_.reserve(2 * hits * sizeof(WavefrontRay));
-    if (shadows_) shadow_rays_.reserve(std::size_t(lights_) * hits * sizeof(WavefrontRay));
-    clear_queue_counts();
-    pass_barrier();
+    const std::size_t all_slots = std::max(shadow_base + (shadows_ ? std::size_t(light_count) * hits : 0),
+                                           secondary_ && local ? 2 * hits : std::size_t(0));
+    ray_slots_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(WavefrontRay));
+    flags_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(std::uint32_t));
     hits_.bind(kBindingHits);
-    bind_if(rays_out_, kBindingRaysOut);
-    bind_if(shadow_rays_, kBindingShadowRays);
+    ray_slots_.bind(kBindingRaySlots);
+    flags_.bind(kBindingFlags);
     radiance_.bind(kBindingRadiance);
-    queue_counts_.bind(kBindingQueueCounts);
     shade_.set("wf_input_count", unsigned(hits));
+    shade_.set("wf_light_first", light_first);
+    shade_.set("wf_light_count", light_count);
+    shade_.set("wf_shadow_slot_base", unsigned(shadow_base));
+    shade_.set("wf_shade_local", local ? 1 : 0);
     shade_.dispatch_threads(hits);
     record_pass("shade");
     pass_barrier();
     check_gl("wavefront: shade pass");
 }
 
-void Wavefront::run_shadow(std::size_t rays) {
-    const PassTimer timed(timer, "shadow");
-    shadow_rays_.bind(kBindingShadowRays);
-    radiance_.bind(kBindingRadiance);
-    bind_traversal();
-    shadow_.set("wf_input_count", unsigned(rays));
-    shadow_.dispatch_threads(rays);
-    record_pass("shadow");
-    pass_barrier();
-    check_gl("wavefront: shadow pass");
+// Traces `count` rays of depth `depth` from `rays`, in batches: the hits of each batch are shaded (and their
+// descendants traced) before the next batch.
+void Wavefront::run_rays(Buffer& rays, std::size_t count, int depth) {
+    for (std::size_t first = 0; first < count; first += batch_) {
+        const std::size_t n = std::min(batch_, count - first);
+        run_trace(rays, first, n);
+        hit_slots_.reserve(n * sizeof(WavefrontHit));
+        flags_.reserve(n * sizeof(std::uint32_t));
+        hit_slots_.bind(kBindingHits);
+        flags_.bind(kBindingFlags);
+        run_collect(trace_collect_, rays, first, n);
+        const std::size_t hits = compact(hit_slots_, n, sizeof(WavefrontHit) / 4, hits_);
+        if (hits > 0) process_hits(hits, depth);
+    }
 }
 
-void Wavefront::run_trace(std::size_t rays) {
+void Wavefront::run_trace(Buffer& rays, std::size_t first, std::size_t count) {
     const PassTimer timed(timer, "trace");
-    hits_.reserve(rays * sizeof(WavefrontHit));   // at most one hit per ray
-    clear_queue_counts();
-    pass_barrier();
-    rays_in_.bind(kBindingRaysIn);
-    hits_.bind(kBindingHits);
-    radiance_.bind(kBindingRadiance);
-    queue_counts_.bind(kBindingQueueCounts);
-    bind_traversal();
-    trace_.set("wf_input_count", unsigned(rays));
-    trace_.dispatch_threads(rays);
+    results_.reserve(count * sizeof(WavefrontTraceResult));
+    if (traversal_.trace_batch) {
+        traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
+    } else {
+        rays.bind(kBindingRaysIn);
+        results_.bind(kBindingResults);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingTestsPerPixel);
+        bind_traversal();
+        trace_.set("wf_input_first", unsigned(first));
+        trace_.set("wf_input_count", unsigned(count));
+        trace_.dispatch_threads(count);
+    }
     record_pass("trace");
     pass_barrier();
     check_gl("wavefront: trace pass");
+    if (settings_.record_hits) record_rays(rays, first, count, false);
 }
 
-void Wavefront::resolve() {
+void Wavefront::run_shadow(Buffer& rays, std::size_t first, std::size_t count) {
+    const PassTimer timed(timer, "shadow");
+    results_.reserve(count * sizeof(std::uint32_t));
+    if (traversal_.shadow_batch) {
+        traversal_.shadow_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
+    } else {
+        rays.bind(kBindingRaysIn);
+        results_.bind(kBindingResults);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingTestsPerPixel);
+        bind_traversal();
+        shadow_.set("wf_input_first", unsigned(first));
+        shadow_.set("wf_input_count", unsigned(count));
+        shadow_.dispatch_threads(count);
+    }
+    record_pass("shadow");
+    pass_barrier();
+    check_gl("wavefront: shadow pass");
+    if (settings_.record_hits) record_rays(rays, first, count, true);
+    run_collect(shadow_collect_, rays, first, count);
+}
+
+// The pass after a traversal: reads results_ (one per ray) and adds radiance (and, for trace, fills hit slots).
+void Wavefront::run_collect(const Program& collect, Buffer& rays, std::size_t first, std::size_t count) {
+    rays.bind(kBindingRaysIn);
+    results_.bind(kBindingResults);
+    radiance_.bind(kBindingRadiance);
+    collect.set("wf_input_first", unsigned(first));
+    collect.set("wf_input_count", unsigned(count));
+    collect.dispatch_threads(count);
+    pass_barrier();
+    check_gl("wavefront: collect pass");
+}
+
+// --dump-hits: every slot of a primary batch inside the image is a primary ray (triangle -1 where the G-buffer is
+// empty).
+void Wavefront::record_primary_slots(std::size_t slots) {
+    for (const WavefrontHit& h : hit_slots_.download<WavefrontHit>(slots))
+        if (h.ray.pixel != kNoPixel)
+            hit_records_.push_back(make_record(h.ray, samples_, HitRecordKind::Primary, h.triangle,
+                                               h.triangle >= 0 ? h.t : 0.0f));
+}
+
+// --dump-hits: the rays of a trace or shadow pass with their results.
+void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow) {
+    const std::vector<WavefrontRay> queue = rays.download<WavefrontRay>(count, first);
+    if (shadow) {
+        const std::vector<std::uint32_t> occluded = results_.download<std::uint32_t>(count);
+        for (std::size_t i = 0; i < count; ++i)
+            hit_records_.push_back(make_record(queue[i], samples_, HitRecordKind::Shadow, occluded[i] ? 1 : -1, 0.0f));
+        return;
+    }
+    const std::vector<WavefrontTraceResult> results = results_.download<WavefrontTraceResult>(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const auto kind = HitRecordKind(queue[i].depth_kind >> 16);
+        hit_records_.push_back(make_record(queue[i], samples_, kind, results[i].triangle,
+                                           results[i].triangle >= 0 ? results[i].t : 0.0f));
+    }
+}
+
+void Wavefront::resolve(std::size_t band) {
     const PassTimer timed(timer, "resolve");
     radiance_.bind(kBindingRadiance);
-    image_.bind(kBindingImage);
-    resolve_.dispatch_threads(pixels_);
+    image_bands_[band].bind(kBindingImage);
+    const std::size_t pixels = band_pixels(band).second;
+    resolve_.set("wf_input_count", unsigned(pixels));
+    resolve_.dispatch_threads(pixels);
     record_pass("resolve");
     pass_barrier();
     check_gl("wavefront: resolve pass");
@@ -253,13 +478,24 @@ void Wavefront::resolve() {
 
 Image Wavefront::finish_frame(RayCounters& counters) {
     Image image(settings_.width, settings_.height);
-    const std::vector<glm::vec4> sums = image_.download<glm::vec4>(pixels_);
-    for (std::size_t i = 0; i < pixels_; ++i) image.pixels[i] = glm::vec3(sums[i]) / float(std::max(samples_, 1));
+    for (std::size_t band = 0; band < image_bands_.size(); ++band) {
+        const auto [first, count] = band_pixels(band);
+        const std::vector<glm::vec4> sums = image_bands_[band].download<glm::vec4>(count);
+        for (std::size_t i = 0; i < count; ++i)
+            image.pixels[first + i] = glm::vec3(sums[i]) / float(std::max(samples_, 1));
+    }
     counters = counters_.ray_counters();
     // Primary rays are one per pixel and sample, whether the stage rasterized or traced them.
     counters.rays[int(RayKind::Primary)] = std::uint64_t(pixels_) * std::uint64_t(samples_);
     check_gl("wavefront: finish frame");
     return image;
+}
+
+void Wavefront::finish_frame(FrameResult& result) {
+    result.image = finish_frame(result.stats.counters);
+    if (settings_.record_hits) result.hits = std::move(hit_records_);
+    hit_records_.clear();
+    if (settings_.record_tests_per_pixel) result.tests_per_pixel = tests_per_pixel_.download<std::uint32_t>(pixels_);
 }
 
 }  // namespace rt::gpu

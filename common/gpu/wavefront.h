@@ -7,7 +7,7 @@
 //        └──────────────────────────────── hits of the next bounce <───────────────────┘
 //
 // The stage supplies two things: the primary hits (stage 02 rasterizes them; stages 03-05 trace camera rays with
-// trace_camera_sample) and the traversal, a GLSL file that defines
+// trace_camera_sample) and the traversal: a GLSL file that defines
 //
 //   bool trace_closest(Ray ray, out Hit hit);   // the nearest hit with 0 < t < ray.tmax (hit.triangle = -1 if none)
 //   bool trace_any(Ray ray);                    // whether anything is hit with 0 < t < ray.tmax (may stop early)
@@ -15,12 +15,19 @@
 // and calls wf_count_tests(n) for the ray/triangle tests it makes. It should #include "wavefront/wavefront.glsl"
 // (rays, hits, the counting hook; RT_INTERSECT_METHOD says which ray/triangle test to use) and keep its own buffers
 // at WF_BINDING_TRAVERSAL_FIRST and up. The pipeline compiles its trace and shadow passes with that file included
-// first. Queues are appended with atomic counters and read back after each pass (4 uints), so each dispatch is sized
-// to the rays that exist and each queue is allocated for exactly what the previous pass can produce.
+// first. A stage that traces a whole queue at once (stages 04-05: many dispatches per pass) supplies trace_batch
+// and shadow_batch instead, which write one result per ray (BatchTraceInputs).
 //
-// Effects the scene does not call for cost nothing: no shadow pass, shadow queue or shadow code without shadows, no
+// Queues are ordered, never appended to: each pass writes its outputs to fixed slots and a prefix sum packs them
+// (docs/gpu.md, "Queue order"), so queue contents, stats and images are the same on every run. Work is done in
+// batches small enough that no buffer the pipeline binds exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE (or
+// max_storage_bytes / $RT_MAX_SSBO_BYTES, when smaller); a bounce whose rays do not fit is traced in parts, its
+// children first (depth first over batches), so nothing is ever dropped.
+//
+// Effects the scene does not call for cost nothing: no shadow pass, shadow slots or shadow code without shadows, no
 // trace pass, ray queues or reflection/refraction code without reflections and refractions (or with max_depth 0).
-// The image is a per-pixel sum in fixed point (wavefront.glsl, wf_accumulate), so it is the same on every run.
+// The image is a per-pixel sum in 96-bit fixed point (wavefront.glsl, wf_accumulate): exact, so the same on every
+// run, and saturating, never wrapping, beyond 2^63.
 #pragma once
 
 #include <cstddef>
@@ -28,18 +35,25 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "../app/hit_record.h"
 #include "../app/image.h"
 #include "../app/renderer.h"
 #include "buffer.h"
 #include "gpu_scene.h"
+#include "scan.h"
 #include "shader.h"
 
 namespace rt::gpu {
 
+// SSBO bindings of wavefront.glsl a batch traversal's passes use (WF_BINDING_RAYS_IN, _RESULTS, _TESTS_PER_PIXEL).
+constexpr unsigned kWavefrontBindingRaysIn = 16;
+constexpr unsigned kWavefrontBindingResults = 21;
+constexpr unsigned kWavefrontBindingTestsPerPixel = 23;
 // First SSBO binding a traversal may use for its own data (wavefront.glsl: WF_BINDING_TRAVERSAL_FIRST).
 constexpr unsigned kWavefrontBindingTraversalFirst = 24;
 // The primary-hit pass of a stage may bind its own textures from here (02 binds its G-buffer).
@@ -50,19 +64,42 @@ struct WavefrontRay {
     glm::vec3 origin;    float tmax;
     glm::vec3 direction; std::uint32_t pixel;
     glm::vec3 weight;    std::uint32_t depth_kind;   // depth | kind << 16
+    std::uint32_t path, light, pad0, pad1;           // the ray in its tree (hit_record.h); light: shadow rays
 };
-static_assert(sizeof(WavefrontRay) == 48);
+static_assert(sizeof(WavefrontRay) == 64);
 struct WavefrontHit {
     WavefrontRay ray;
     std::int32_t triangle; float t, u, v;
 };
-static_assert(sizeof(WavefrontHit) == 64);
+static_assert(sizeof(WavefrontHit) == 80);
+// One trace-pass result per ray: the closest hit, triangle -1 for a miss.
+struct WavefrontTraceResult {
+    std::int32_t triangle; float t, u, v;
+};
+static_assert(sizeof(WavefrontTraceResult) == 16);
+
+class Wavefront;
+
+// What a batch traversal gets for one pass: trace rays[first, first + count) (WavefrontRay) and write result i for
+// ray first + i: WavefrontTraceResult (trace_batch, closest hit) or a uint, 1 = occluded (shadow_batch, any hit).
+// It must add its ray/triangle tests to RT_COUNTER_INTERSECTION_TESTS (the counters stay bound at
+// RT_BINDING_COUNTERS) and, when tests_per_pixel is given, to tests_per_pixel[ray.pixel] (wf_flush_tests does both
+// in a pass that includes wavefront.glsl). Every buffer it is given fits one storage block.
+struct BatchTraceInputs {
+    const Buffer& rays;
+    std::size_t first = 0, count = 0;
+    Buffer& results;
+    const Buffer* tests_per_pixel = nullptr;   // uint per pixel, only when settings.record_tests_per_pixel
+    const Wavefront& wavefront;                // defines(), set_uniforms() for the batch's own programs
+};
 
 // The stage's traversal (see above).
 struct Traversal {
-    std::string glsl;                 // relative to the shader root, e.g. "02_raster_hybrid/brute_force.glsl"
+    std::string glsl;                 // relative to the shader root, e.g. "common/brute_force.glsl"
     ShaderDefines defines;            // extra defines it needs
     std::function<void()> bind;       // binds its buffers before the trace and shadow passes (may be empty)
+    // Optional: whole-queue traversals replacing the per-ray trace and shadow passes (may be empty).
+    std::function<void(const BatchTraceInputs&)> trace_batch, shadow_batch;
 };
 
 class Wavefront {
@@ -73,11 +110,12 @@ public:
     // per-pixel buffers, clears the image and the counters, binds the scene. The scene must be uploaded.
     void begin_frame(const GpuScene& scene, const RenderSettings& settings);
 
-    // One sample with primary hits from the stage: empties the hit queue, sizes it for `max_hits`, and binds the
-    // hit queue, the queue counters and the radiance accumulator, so the stage's pass can append with wf_push_hit()
-    // and add the background of empty pixels with wf_accumulate(). Then shade_sample() does the rest.
-    void begin_primary_hits(std::size_t max_hits);
-    void shade_sample();
+    // One sample with primary hits from the stage: for each batch of 8x8 pixel tiles, `primary_pass` (a program of
+    // the stage, compiled with defines(); the stage binds its own inputs first) runs one thread per slot of the
+    // batch: it writes wf_hits[slot] and wf_flags[slot] for pixel wf_tile_pixel(wf_tile_first * 64 + slot) and adds
+    // the background of empty pixels with wf_accumulate() (raster/primary_hits.comp). Then the hits are shaded and
+    // every bounce traced.
+    void shade_sample(const Program& primary_pass);
 
     // One sample with traced primary rays (stages 03-05): camera rays through `offset` in each pixel, traced with
     // the traversal, then shaded as above.
@@ -85,12 +123,16 @@ public:
 
     // End of the frame: the image (the mean over the samples) and the counters. Waits for the GPU.
     Image finish_frame(RayCounters& counters);
+    // The same into a FrameResult, with the diagnostics the settings asked for: `hits` (record_hits: one HitRecord
+    // per traced or rasterized ray) and `tests_per_pixel` (record_tests_per_pixel).
+    void finish_frame(FrameResult& result);
 
     // The defines the passes were compiled with (effects, RT_INTERSECT_METHOD, COUNT_TESTS, the traversal's).
     const ShaderDefines& defines() const { return defines_; }
     // Programs compiled for this frame's variant, e.g. "wavefront/shade.comp".
     std::vector<std::string> programs() const;
-    // Passes dispatched since begin_frame, in first-run order, and how many dispatches each.
+    // Passes dispatched since begin_frame, in first-run order, and how many dispatches each (a pass' compaction and
+    // its collect step count with it: "trace" is trace.comp or trace_batch, trace_collect.comp and the scan).
     const std::vector<std::string>& passes() const { return pass_order_; }
     const std::map<std::string, int>& dispatches() const { return dispatches_; }
     // The settings uniforms on a stage's own pass (wf_max_depth, wf_image_size, ...), for primary-hit passes.
@@ -100,18 +142,34 @@ public:
 
     // Count tests (COUNT_TESTS, default on): exact stats for one atomic per thread. Off for timing runs.
     bool count_tests = true;
+    // The largest buffer the pipeline may bind, when smaller than GL_MAX_SHADER_STORAGE_BLOCK_SIZE (0 = no extra
+    // limit; $RT_MAX_SSBO_BYTES does the same). Tests set it tiny to force batches.
+    std::size_t max_storage_bytes = 0;
     // When set, each pass is timed on it as "shade", "shadow", "trace", "resolve" or "camera_rays".
     GpuTimer* timer = nullptr;
+    // The limit this frame runs with, and how many hits or rays one batch holds.
+    std::size_t storage_limit() const { return storage_limit_; }
+    std::size_t batch_size() const { return batch_; }
 
 private:
     Program compile(const std::string& pass, bool with_traversal) const;
     void compile_programs();
-    std::uint32_t read_queue_count(unsigned index) const;
-    void clear_queue_counts();
-    void run_shade(std::size_t hits);
-    void run_shadow(std::size_t rays);
-    void run_trace(std::size_t rays);
-    void resolve();
+    std::size_t storage_block_limit() const;
+    void size_batches();
+    std::pair<std::size_t, std::size_t> band_pixels(std::size_t band) const;
+    template <class F> void for_each_tile_batch(F&& run_batch);
+    std::uint32_t compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out,
+                          std::size_t split = 0, std::uint32_t* before_split = nullptr);
+    Buffer& queue(int depth);
+    void process_hits(std::size_t hits, int depth);
+    void run_shade(std::size_t hits, unsigned light_first, unsigned light_count, bool local, std::size_t shadow_base);
+    void run_rays(Buffer& rays, std::size_t count, int depth);
+    void run_shadow(Buffer& rays, std::size_t first, std::size_t count);
+    void run_trace(Buffer& rays, std::size_t first, std::size_t count);
+    void run_collect(const Program& collect, Buffer& rays, std::size_t first, std::size_t count);
+    void record_primary_slots(std::size_t slots);
+    void record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow);
+    void resolve(std::size_t band);
     void bind_traversal() const;
 
     Traversal traversal_;
@@ -120,11 +178,19 @@ private:
     int samples_ = 0;
     unsigned lights_ = 0;
     bool shadows_ = false, secondary_ = false;
+    std::size_t storage_limit_ = 0, batch_ = 0;
+    std::size_t band_tile_rows_ = 0;   // rows of 8x8 tiles whose radiance sums fit one storage block
     ShaderDefines defines_;
     std::string compiled_key_;
-    Program shade_, shadow_, trace_, resolve_, camera_;
-    Buffer rays_in_, rays_out_, hits_, shadow_rays_, radiance_, image_, queue_counts_;
+    Program shade_, shadow_, trace_, shadow_collect_, trace_collect_, resolve_, camera_, compact_;
+    Scan scan_;
+    // Shared by all depths: the hits being shaded, the output slots of a pass with their flags and scan, results.
+    Buffer hits_, hit_slots_, ray_slots_, flags_, offsets_, counts_, results_;
+    std::vector<Buffer> queues_;   // queues_[d]: the rays of depth d (then the shadow rays of depth d - 1)
+    Buffer radiance_, tests_per_pixel_;   // radiance_: one band of rows (wf_accumulate)
+    std::vector<Buffer> image_bands_;     // the float sum over samples, band by band
     CounterBuffer counters_;
+    std::vector<HitRecord> hit_records_;
     std::vector<std::string> pass_order_;
     std::map<std::string, int> dispatches_;
 };

@@ -5,15 +5,26 @@
 // (ENABLE_SHADOWS): the shadow pass adds them when nothing blocks the light. kr C(reflected) and kt C(refracted)
 // become rays of the next bounce (ENABLE_REFLECTIONS, ENABLE_REFRACTIONS), spawned while depth < max_depth and the
 // child's weight is above the cut-off, as Whitted::radiance does. Code for an effect that is off is not compiled.
+//
+// Outputs go to fixed slots of wf_ray_slots (flag 1 when used), so that compaction keeps them grouped and in the
+// order of the hits: for hit i of n, its reflection ray at slot i, its refraction ray at n + i, its shadow ray
+// towards light wf_light_first + l at wf_shadow_slot_base + l n + i. When the shadow slots of all lights would not
+// fit in a storage block, rt::gpu::Wavefront runs the pass once per range of lights; only the last run
+// (wf_shade_local = 1) adds the emission and ambient terms and spawns reflection and refraction rays.
 #include "wavefront.glsl"
 #include "whitted.glsl"
 
 layout(local_size_x = 64) in;
 
+uniform uint wf_light_first;        // the lights whose shadow rays this run spawns
+uniform uint wf_light_count;
+uniform uint wf_shadow_slot_base;
+uniform int wf_shade_local;
+
 // Rays spawned by this thread, added to the counters once at the end.
 uint shadow_rays = 0u, reflection_rays = 0u, refraction_rays = 0u;
 
-void shade(WavefrontHit entry) {
+void shade(uint i, WavefrontHit entry) {
     const WavefrontRay incoming = entry.ray;
     const Ray ray = wf_ray(incoming);
     Hit hit;
@@ -27,28 +38,38 @@ void shade(WavefrontHit entry) {
     const vec3 n = sp.shading_normal;
     const vec3 weight = incoming.weight;
 
+    const uint n_hits = wf_input_count;
+
     // Local illumination.
     vec3 local = whitted_emission_ambient(w.coefficients);
-    for (uint l = 0u; l < rt_light_count; ++l) {
+    for (uint l = wf_light_first; l < wf_light_first + wf_light_count; ++l) {
         const Light light = rt_lights[l];
         vec3 to_light;
         float distance;
         const vec3 incidence = light_incidence(light, sp.position, n, to_light, distance);
+#ifdef ENABLE_SHADOWS
+        const uint slot = wf_shadow_slot_base + (l - wf_light_first) * n_hits + i;
+        wf_flags[slot] = 0u;
+#endif
         if (incidence == vec3(0.0)) continue;
         const vec3 c = shade_light(w.coefficients, incidence, n, to_light, -d);
 #ifdef ENABLE_SHADOWS
         const vec3 origin = whitted_spawn_origin(sp, to_light, wf_offset, wf_epsilon);
         const float tmax = light.type == RT_LIGHT_DIRECTIONAL ? RT_INFINITY : rt_length(light.position - origin);
-        wf_push_shadow_ray(wf_make_ray(origin, to_light, tmax, weight * c, incoming.pixel, wf_depth(incoming),
-                                       WF_KIND_SHADOW));
+        wf_ray_slots[slot] = wf_make_ray(origin, to_light, tmax, weight * c, incoming.pixel, wf_depth(incoming),
+                                         WF_KIND_SHADOW, incoming.path, l);
+        wf_flags[slot] = 1u;
         ++shadow_rays;
 #else
         local += c;
 #endif
     }
+    if (wf_shade_local == 0) return;
     wf_accumulate(incoming.pixel, weight * local);
 
 #if defined(ENABLE_REFLECTIONS) || defined(ENABLE_REFRACTIONS)
+    wf_flags[i] = 0u;
+    wf_flags[n_hits + i] = 0u;
     const uint depth = wf_depth(incoming);
     if (int(depth) >= wf_max_depth) return;
     float eta;
@@ -57,8 +78,10 @@ void shade(WavefrontHit entry) {
     const vec3 reflection_weight = weight * k.reflection;
     if (whitted_max_component(reflection_weight) > wf_cutoff) {
         const vec3 dir = whitted_reflection_dir(sp, d);
-        wf_push_ray(wf_make_ray(whitted_spawn_origin(sp, dir, wf_offset, wf_epsilon), dir, RT_INFINITY,
-                                reflection_weight, incoming.pixel, depth + 1u, WF_KIND_REFLECTION));
+        wf_ray_slots[i] = wf_make_ray(whitted_spawn_origin(sp, dir, wf_offset, wf_epsilon), dir, RT_INFINITY,
+                                      reflection_weight, incoming.pixel, depth + 1u, WF_KIND_REFLECTION,
+                                      2u * incoming.path, 0u);
+        wf_flags[i] = 1u;
         ++reflection_rays;
     }
 #endif
@@ -66,8 +89,10 @@ void shade(WavefrontHit entry) {
     const vec3 refraction_weight = weight * k.refraction;
     vec3 dir;
     if (whitted_max_component(refraction_weight) > wf_cutoff && whitted_refraction_dir(sp, d, eta, dir)) {
-        wf_push_ray(wf_make_ray(whitted_spawn_origin(sp, dir, wf_offset, wf_epsilon), dir, RT_INFINITY,
-                                refraction_weight, incoming.pixel, depth + 1u, WF_KIND_REFRACTION));
+        wf_ray_slots[n_hits + i] = wf_make_ray(whitted_spawn_origin(sp, dir, wf_offset, wf_epsilon), dir,
+                                               RT_INFINITY, refraction_weight, incoming.pixel, depth + 1u,
+                                               WF_KIND_REFRACTION, 2u * incoming.path + 1u, 0u);
+        wf_flags[n_hits + i] = 1u;
         ++refraction_rays;
     }
 #endif
@@ -77,7 +102,7 @@ void shade(WavefrontHit entry) {
 void main() {
     const uint i = rt_global_index();
     if (i >= wf_input_count) return;
-    shade(wf_hits[i]);
+    shade(i, wf_hits[i]);
     rt_counter_add(RT_COUNTER_SHADOW_RAYS, shadow_rays);
     rt_counter_add(RT_COUNTER_REFLECTION_RAYS, reflection_rays);
     rt_counter_add(RT_COUNTER_REFRACTION_RAYS, refraction_rays);

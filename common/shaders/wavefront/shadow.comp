@@ -1,17 +1,19 @@
 #version 450 core
-// Shadow pass: one thread per shadow ray. Any hit before the light (t < tmax) blocks it, so the traversal may stop
-// at the first hit it finds (trace_any); when nothing blocks it, the light's contribution, carried in the ray's
-// weight, goes to the pixel. Compiled only when the scene calls for shadows, with the stage's traversal (which
-// defines trace_any) included before this file by rt::gpu::Wavefront.
+// Shadow pass, per-ray traversal: one thread per shadow ray of wf_rays_in[wf_input_first ..][0 .. wf_input_count).
+// Any hit before the light (t < tmax) blocks it, so the traversal may stop at the first hit it finds (trace_any):
+// wf_occluded[i] = 1 if blocked. shadow_collect.comp then adds the unblocked lights. Compiled only when the scene
+// calls for shadows, with the stage's traversal (which defines trace_any) included before this file by
+// rt::gpu::Wavefront. A stage with a batch traversal (Traversal::shadow_batch) replaces this pass.
 #include "wavefront.glsl"
 
 layout(local_size_x = 64) in;
 
+layout(std430, binding = WF_BINDING_RESULTS) writeonly buffer WfOccluded { uint wf_occluded[]; };
+
 void main() {
     const uint i = rt_global_index();
-    if (i < wf_input_count) {
-        const WavefrontRay r = wf_shadow_rays[i];
-        if (!trace_any(wf_ray(r))) wf_accumulate(r.pixel, r.weight);
-    }
-    wf_flush_tests();
+    if (i >= wf_input_count) return;
+    const WavefrontRay r = wf_rays_in[wf_input_first + i];
+    wf_occluded[i] = trace_any(wf_ray(r)) ? 1u : 0u;
+    wf_flush_tests(r.pixel);
 }

@@ -3,25 +3,28 @@
 //
 // Instead of one thread following a whole ray tree (stage 01's recursion), each pass handles one kind of work for
 // every ray that needs it (Laine, Karras & Aila 2013, "Megakernels Considered Harmful"):
-//   shade.comp   hits -> light contributions, shadow rays, next bounce's reflection/refraction rays
-//   shadow.comp  shadow rays -> any hit; the light's contribution when unoccluded
-//   trace.comp   reflection/refraction rays -> closest hit -> the hit queue for the next shade pass
-// Queues are appended to with an atomic counter (an append, not a prefix sum: the order of entries then varies from
-// run to run, but every pass treats its entries independently and the radiance sum below is order independent).
+//   shade.comp           hits -> light contributions, shadow rays, next bounce's reflection/refraction rays
+//   shadow.comp          shadow rays -> any hit (one result per ray); shadow_collect.comp adds the unblocked lights
+//   trace.comp           reflection/refraction rays -> closest hit (one result per ray); trace_collect.comp turns
+//                        the results into the next shade pass' hits and adds the background of the misses
+// Passes never append: a pass writes its outputs to fixed slots (a slot per input and output kind), flags the used
+// ones, and compact_records.comp packs them with a prefix sum, so every queue has the same order on every run
+// (docs/gpu.md, "Queue order").
 #include "bindings.glsl"
 #include "counters.glsl"
 #include "compute.glsl"
 #include "intersect.glsl"
 
 // SSBO bindings of the pipeline; a stage's traversal data start at WF_BINDING_TRAVERSAL_FIRST
-// (rt::gpu::kWavefrontBindingTraversalFirst).
+// (rt::gpu::kWavefrontBindingTraversalFirst). wavefront.cpp has the same numbers.
 #define WF_BINDING_RAYS_IN (RT_BINDING_STAGE_FIRST + 0)
 #define WF_BINDING_HITS (RT_BINDING_STAGE_FIRST + 1)
-#define WF_BINDING_RAYS_OUT (RT_BINDING_STAGE_FIRST + 2)
-#define WF_BINDING_SHADOW_RAYS (RT_BINDING_STAGE_FIRST + 3)
+#define WF_BINDING_RAY_SLOTS (RT_BINDING_STAGE_FIRST + 2)
+#define WF_BINDING_FLAGS (RT_BINDING_STAGE_FIRST + 3)
 #define WF_BINDING_RADIANCE (RT_BINDING_STAGE_FIRST + 4)
-#define WF_BINDING_QUEUE_COUNTS (RT_BINDING_STAGE_FIRST + 5)
+#define WF_BINDING_RESULTS (RT_BINDING_STAGE_FIRST + 5)
 #define WF_BINDING_IMAGE (RT_BINDING_STAGE_FIRST + 6)
+#define WF_BINDING_TESTS_PER_PIXEL (RT_BINDING_STAGE_FIRST + 7)
 #define WF_BINDING_TRAVERSAL_FIRST (RT_BINDING_STAGE_FIRST + 8)
 
 // Ray kinds, as rt::RayKind.
@@ -30,38 +33,50 @@
 #define WF_KIND_REFLECTION 2u
 #define WF_KIND_REFRACTION 3u
 
-// A queued ray (48 bytes, std430; WavefrontRay in wavefront.h). For shadow rays `weight` is the light's whole
+// The pixel of an unused slot (a tile slot outside the image).
+#define WF_NO_PIXEL 0xffffffffu
+
+// A queued ray (64 bytes, std430; WavefrontRay in wavefront.h). For shadow rays `weight` is the light's whole
 // contribution to the pixel (path weight times the unshadowed light), added when nothing blocks the ray.
+// `path` and `light` name the ray in the ray tree (common/app/hit_record.h): path 1 is the primary ray, 2p and 2p + 1
+// the reflection and refraction children of path p (meaningful up to depth 30); a shadow ray has its parent hit's
+// path and the index of its light.
 struct WavefrontRay {
     vec3 origin; float tmax;
     vec3 direction; uint pixel;
     vec3 weight; uint depth_kind;   // depth in bits 0-15, kind in bits 16-31
+    uint path; uint light; uint pad0; uint pad1;
 };
 
-// A ray and what it hit (64 bytes): the input of the shade pass.
+// A ray and what it hit (80 bytes): the input of the shade pass.
 struct WavefrontHit {
     WavefrontRay ray;
     int triangle; float t; float u; float v;
 };
 
+// What a trace pass finds for one ray (16 bytes; WavefrontTraceResult in wavefront.h): triangle -1 for a miss.
+struct WavefrontTraceResult {
+    int triangle; float t; float u; float v;
+};
+
 layout(std430, binding = WF_BINDING_RAYS_IN) buffer WfRaysIn { WavefrontRay wf_rays_in[]; };
 layout(std430, binding = WF_BINDING_HITS) buffer WfHits { WavefrontHit wf_hits[]; };
-layout(std430, binding = WF_BINDING_RAYS_OUT) buffer WfRaysOut { WavefrontRay wf_rays_out[]; };
-layout(std430, binding = WF_BINDING_SHADOW_RAYS) buffer WfShadowRays { WavefrontRay wf_shadow_rays[]; };
-// Radiance of the current sample, 3 ints per pixel in fixed point (see wf_accumulate).
-layout(std430, binding = WF_BINDING_RADIANCE) buffer WfRadiance { int wf_radiance[]; };
-// Append counters of the output queues; the CPU zeroes them before a pass and reads them after it.
-layout(std430, binding = WF_BINDING_QUEUE_COUNTS) buffer WfQueueCounts {
-    uint wf_count_hits;
-    uint wf_count_rays_out;
-    uint wf_count_shadow_rays;
-    uint wf_count_pad;
-};
-// Sum over the samples of the pixel's radiance (rgb; a = unused), float, written only by resolve.comp.
+layout(std430, binding = WF_BINDING_RAY_SLOTS) buffer WfRaySlots { WavefrontRay wf_ray_slots[]; };
+// One flag per output slot of the pass (1 = used), the input of the compaction.
+layout(std430, binding = WF_BINDING_FLAGS) buffer WfFlags { uint wf_flags[]; };
+// Radiance of the current sample: per pixel and channel a 96-bit fixed-point number (see wf_accumulate).
+layout(std430, binding = WF_BINDING_RADIANCE) buffer WfRadiance { uint wf_radiance[]; };
+// Sum over the samples of the pixel's radiance (rgb; a = unused), float, written only by resolve.comp (for the band
+// of rows of wf_radiance).
 layout(std430, binding = WF_BINDING_IMAGE) buffer WfImage { vec4 wf_image[]; };
+#ifdef RECORD_TESTS_PER_PIXEL
+// Ray/triangle tests of all rays of each pixel's tree (--heatmap).
+layout(std430, binding = WF_BINDING_TESTS_PER_PIXEL) buffer WfTestsPerPixel { uint wf_tests_per_pixel[]; };
+#endif
 
 // Settings (uniforms set by rt::gpu::Wavefront). RT_INTERSECT_METHOD (a define: RT_INTERSECT_MOLLER or
 // RT_INTERSECT_WATERTIGHT) picks the ray/triangle test at compile time.
+uniform uint wf_input_first;        // first entry of the pass's input queue (wf_rays_in)
 uniform uint wf_input_count;        // entries in the pass's input queue
 uniform int wf_max_depth;           // --max-depth
 uniform float wf_cutoff;            // --cutoff
@@ -70,11 +85,14 @@ uniform int wf_offset;              // RT_OFFSET_EPSILON | RT_OFFSET_ROBUST
 uniform float wf_epsilon;           // --epsilon
 uniform ivec2 wf_image_size;        // width, height
 uniform vec2 wf_sample_offset;      // where in the pixel this sample's primary rays pass (pixel_samples.h)
+uniform uint wf_tile_first;         // primary passes: the first 8x8 tile of this batch (see wf_tile_pixel)
+uniform uint wf_pixel_first;        // the first pixel of the band of rows wf_radiance holds (see wf_accumulate)
 
 uint wf_depth(WavefrontRay r) { return r.depth_kind & 0xffffu; }
 uint wf_kind(WavefrontRay r) { return r.depth_kind >> 16; }
 
-WavefrontRay wf_make_ray(vec3 origin, vec3 direction, float tmax, vec3 weight, uint pixel, uint depth, uint kind) {
+WavefrontRay wf_make_ray(vec3 origin, vec3 direction, float tmax, vec3 weight, uint pixel, uint depth, uint kind,
+                         uint path, uint light) {
     WavefrontRay r;
     r.origin = origin;
     r.tmax = tmax;
@@ -82,56 +100,95 @@ WavefrontRay wf_make_ray(vec3 origin, vec3 direction, float tmax, vec3 weight, u
     r.pixel = pixel;
     r.weight = weight;
     r.depth_kind = (depth & 0xffffu) | (kind << 16);
+    r.path = path;
+    r.light = light;
+    r.pad0 = 0u;
+    r.pad1 = 0u;
     return r;
 }
 
 Ray wf_ray(WavefrontRay r) { return make_ray(r.origin, r.direction, r.tmax); }
 
-// Appends to the queues. The CPU sizes each queue for the most entries its pass can write, so the bounds checks
-// never drop anything; they only keep a bug from writing past a buffer.
-void wf_push_hit(WavefrontRay r, Hit h) {
-    const uint slot = atomicAdd(wf_count_hits, 1u);
-    if (slot < uint(wf_hits.length())) {
-        WavefrontHit e;
-        e.ray = r;
-        e.triangle = h.triangle;
-        e.t = h.t;
-        e.u = h.u;
-        e.v = h.v;
-        wf_hits[slot] = e;
-    }
+// The order of primary rays and hits: the image in 8x8 tiles, row by row, and inside a tile the Morton (Z) order of
+// the pixel, so 2x2, 4x4 and 8x8 blocks of neighbouring pixels are neighbours in the queue. Slot s of a primary
+// batch is pixel wf_tile_pixel(wf_tile_first * 64 + s); false for the slots of edge tiles outside the image.
+uint wf_compact_bits(uint v) {   // the even bits of v, packed (Morton decode)
+    v &= 0x55555555u;
+    v = (v | (v >> 1)) & 0x33333333u;
+    v = (v | (v >> 2)) & 0x0f0f0f0fu;
+    v = (v | (v >> 4)) & 0x00ff00ffu;
+    v = (v | (v >> 8)) & 0x0000ffffu;
+    return v;
 }
-void wf_push_ray(WavefrontRay r) {
-    const uint slot = atomicAdd(wf_count_rays_out, 1u);
-    if (slot < uint(wf_rays_out.length())) wf_rays_out[slot] = r;
-}
-void wf_push_shadow_ray(WavefrontRay r) {
-    const uint slot = atomicAdd(wf_count_shadow_rays, 1u);
-    if (slot < uint(wf_shadow_rays.length())) wf_shadow_rays[slot] = r;
+bool wf_tile_pixel(uint slot, out ivec2 p) {
+    const uint tiles_x = (uint(wf_image_size.x) + 7u) / 8u;
+    const uint tile = slot / 64u, inside = slot % 64u;
+    p = ivec2(int((tile % tiles_x) * 8u + wf_compact_bits(inside)),
+              int((tile / tiles_x) * 8u + wf_compact_bits(inside >> 1)));
+    return p.x < wf_image_size.x && p.y < wf_image_size.y;
 }
 
-// Adds radiance to a pixel. Deterministic whatever order the GPU runs the threads in: integer addition is
-// associative, so each contribution is rounded to a multiple of 2^-16 (1.5e-5, a twentieth of the smallest step of
-// an 8-bit sRGB value) and added with an integer atomicAdd. A pixel's sum must stay below 32768 per sample.
-const float WF_FIXED_SCALE = 65536.0;
+// Adds radiance to a pixel, exactly and in any thread order. Each channel of a pixel is a 96-bit unsigned fixed-point
+// number in three 32-bit limbs (least significant first), in units of 2^-32: resolution 2^-32 (2.3e-10), range
+// [0, 2^63) (9.2e18, beyond any photometric scene: a 1e7 cd lamp at 1 mm gives 1e13). A contribution is rounded to
+// the resolution and added limb by limb with atomicAdd; the value atomicAdd returns tells whether the limb wrapped,
+// and the carry goes to the next limb. Integer addition is associative, so the sum does not depend on the order the
+// GPU runs the threads in. Bit 31 of the top limb (2^63) is sticky: a sum that reaches it, or a carry out of the top
+// limb, sets it, and resolve.comp then gives the saturated value WF_RADIANCE_MAX, never a wrapped one. Negative and
+// NaN contributions add nothing (scenes have non-negative colours and lights); +Inf saturates. wf_radiance holds a
+// band of image rows starting at pixel wf_pixel_first (the whole image unless it would not fit one storage block).
+const float WF_RADIANCE_MAX = 9.2233720e18;   // 2^63
+void wf_add_fixed(uint base, float c) {
+    if (!(c > 0.0)) return;   // also NaN
+    if (c >= WF_RADIANCE_MAX) {
+        atomicOr(wf_radiance[base + 2u], 0x80000000u);
+        return;
+    }
+    int e;
+    const float m = frexp(c, e);               // c = m 2^e, 0.5 <= m < 1
+    uint mantissa = uint(m * 16777216.0);      // 24 bits, exact: c 2^32 = mantissa 2^(e + 8)
+    int shift = e + 8;
+    if (shift < 0) {                           // below 1 unit: round to nearest
+        if (shift < -24) return;
+        mantissa = (mantissa + (1u << uint(-shift - 1))) >> uint(-shift);
+        shift = 0;
+    }
+    uint limbs[3] = uint[3](0u, 0u, 0u);
+    const int q = shift / 32, r = shift % 32;   // shift <= 71: the mantissa ends below bit 95
+    limbs[q] = mantissa << uint(r);
+    if (r > 0 && q < 2) limbs[q + 1] = mantissa >> uint(32 - r);
+    uint carry = 0u;
+    for (uint k = 0u; k < 3u; ++k) {
+        const uint add = limbs[k] + carry;
+        carry = add < limbs[k] ? 1u : 0u;   // limbs[k] = 0xffffffff plus a carry: 0 here, 1 to the next limb
+        if (add != 0u) {
+            const uint old = atomicAdd(wf_radiance[base + k], add);
+            if (old + add < old) carry += 1u;
+        }
+    }
+    if (carry != 0u) atomicOr(wf_radiance[base + 2u], 0x80000000u);
+}
 void wf_accumulate(uint pixel, vec3 c) {
-    const ivec3 q = ivec3(round(clamp(c, vec3(-32767.0), vec3(32767.0)) * WF_FIXED_SCALE));
-    if (q.x != 0) atomicAdd(wf_radiance[3u * pixel], q.x);
-    if (q.y != 0) atomicAdd(wf_radiance[3u * pixel + 1u], q.y);
-    if (q.z != 0) atomicAdd(wf_radiance[3u * pixel + 2u], q.z);
+    const uint base = 9u * (pixel - wf_pixel_first);
+    wf_add_fixed(base, c.r);
+    wf_add_fixed(base + 3u, c.g);
+    wf_add_fixed(base + 6u, c.b);
 }
 
 // Counting ray/triangle tests: a traversal calls wf_count_tests(n) for the tests it makes; each pass adds the
-// thread's total to the global counter once, at its end (one atomic per thread, not per test). Compiled out
-// without COUNT_TESTS (timing runs).
+// thread's total to the global counter once, at its end (one atomic per thread, not per test), and with
+// RECORD_TESTS_PER_PIXEL (--heatmap) to the ray's pixel. Compiled out without COUNT_TESTS (timing runs).
 uint wf_tests = 0u;
 void wf_count_tests(uint n) {
 #ifdef COUNT_TESTS
     wf_tests += n;
 #endif
 }
-void wf_flush_tests() {
+void wf_flush_tests(uint pixel) {
 #ifdef COUNT_TESTS
     rt_counter_add(RT_COUNTER_INTERSECTION_TESTS, wf_tests);
+#ifdef RECORD_TESTS_PER_PIXEL
+    if (wf_tests != 0u && pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[pixel], wf_tests);
+#endif
 #endif
 }

@@ -1,6 +1,7 @@
-// Stage 02's traversal: no acceleration structure, as in stage 01 (brute_force_tracer.h). Every ray is tested
-// against every triangle. The wavefront pipeline (common/gpu/wavefront.h) calls these from its trace pass
-// (reflection and refraction rays) and its shadow pass; stages 03-05 replace this file with a faster traversal.
+// The reference traversal (stage 02's, and the one every faster traversal is checked against): no acceleration
+// structure, as in stage 01 (brute_force_tracer.h). Every ray is tested against every triangle. The wavefront
+// pipeline (common/gpu/wavefront.h) calls these from its trace pass (closest hit) and its shadow pass (any hit);
+// stages 03-05 plug in a faster traversal instead. Shader path: "common/brute_force.glsl".
 #include "wavefront/wavefront.glsl"
 #include "scene.glsl"
 
