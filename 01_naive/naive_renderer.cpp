@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "brute_force_tracer.h"
+#include "common/trace/brute_force_tracer.h"
 #include "common/app/options.h"
 #include "common/app/pixel_samples.h"
 #include "common/app/progress.h"
