@@ -11,6 +11,8 @@
 
 #include "../scene/builtin_scenes.h"
 #include "../scene/gltf_io.h"
+#include "heatmap.h"
+#include "hit_file.h"
 #include "options.h"
 #include "progress.h"
 
@@ -127,6 +129,8 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
             throw InputError(e.what());
         }
         effect_names = settings.effects.names();
+        settings.record_hits = !options.dump_hits.empty();
+        settings.record_tests_per_pixel = !options.heatmap.empty();
 
         const auto start = std::chrono::steady_clock::now();
         FrameResult result = renderer.render(scene, settings);
@@ -135,6 +139,13 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         if (extra) continue;
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
         if (!path.empty()) write_image(path, result.image);
+        if (!options.dump_hits.empty()) write_hit_file(frame_path(options.dump_hits, frame, options.frames), result.hits);
+        if (!options.heatmap.empty()) {
+            const Heatmap heatmap = make_heatmap(result.tests_per_pixel, settings.width, settings.height,
+                                                 options.heatmap_scale);
+            write_image(frame_path(options.heatmap, frame, options.frames), heatmap.image);
+            result.extra["heatmap"] = heatmap_json(heatmap);
+        }
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
         total.counters.add(result.stats.counters);
         total.build_ms += result.stats.build_ms;

@@ -1,0 +1,17 @@
+// Reading and writing --dump-hits files: the 8-byte magic of hit_record.h, then HitRecord structs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hit_record.h"
+
+namespace rt {
+
+// Writes atomically (temporary file, then rename). Throws std::runtime_error naming `path` on failure.
+void write_hit_file(const std::string& path, const std::vector<HitRecord>& hits);
+
+// Throws std::runtime_error naming `path` when it cannot be read, lacks the magic, or ends inside a record.
+std::vector<HitRecord> read_hit_file(const std::string& path);
+
+}  // namespace rt
