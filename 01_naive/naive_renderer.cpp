@@ -1,10 +1,12 @@
 #include "naive_renderer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 
 #include <CLI/CLI.hpp>
 
-#include "brute_force_tracer.h"
+#include "common/trace/brute_force_tracer.h"
 #include "common/app/options.h"
 #include "common/app/pixel_samples.h"
 #include "common/app/progress.h"
@@ -32,20 +34,33 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
     const Whitted<T, BruteForceTracer<T>> whitted(scene, tracer, ws);
     const std::vector<glm::vec2> samples = pixel_sample_offsets(settings.spp);
 
+    // Diagnostics: each row records its own hits (rows run in parallel), joined in row order afterwards.
+    std::vector<std::vector<HitRecord>> row_hits(settings.record_hits ? std::size_t(settings.height) : 0);
+    if (settings.record_tests_per_pixel)
+        result.tests_per_pixel.assign(std::size_t(settings.width) * std::size_t(settings.height), 0);
+
     Progress progress("01_naive", settings.height, !settings.quiet);
     parallel_rows(settings.height, resolve_thread_count(settings.threads), progress, result.stats.counters,
                   [&](int y, RayCounters& counters) {
+                      std::vector<HitRecord>* hits = row_hits.empty() ? nullptr : &row_hits[std::size_t(y)];
                       for (int x = 0; x < settings.width; ++x) {
+                          const std::uint32_t pixel = std::uint32_t(y * settings.width + x);
+                          const std::uint64_t tests_before = counters.intersection_tests;
                           glm::vec3 sum(0.0f);
-                          for (const glm::vec2& s : samples) {
+                          for (std::size_t i = 0; i < samples.size(); ++i) {
                               const Ray<T> ray = camera_ray<T>(scene.camera, settings.width, settings.height,
-                                                               T(x) + T(s.x), T(y) + T(s.y));
+                                                               T(x) + T(samples[i].x), T(y) + T(samples[i].y));
                               counters.rays[int(RayKind::Primary)]++;
-                              sum += whitted.radiance(ray, 0, glm::vec3(1.0f), counters);
+                              const HitLog log{hits, std::uint32_t(i), pixel};
+                              sum += whitted.radiance(ray, 0, glm::vec3(1.0f), counters, hits ? &log : nullptr);
                           }
                           result.image.at(x, y) = sum / float(samples.size());
+                          if (settings.record_tests_per_pixel)
+                              result.tests_per_pixel[pixel] = std::uint32_t(std::min<std::uint64_t>(
+                                  counters.intersection_tests - tests_before, UINT32_MAX));
                       }
                   });
+    for (std::vector<HitRecord>& row : row_hits) result.hits.insert(result.hits.end(), row.begin(), row.end());
     progress.finish();
     const auto t2 = std::chrono::steady_clock::now();
     result.stats.build_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();

@@ -9,7 +9,7 @@
 
 #include <cstdio>
 
-#include "01_naive/brute_force_tracer.h"
+#include "common/trace/brute_force_tracer.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"

@@ -87,7 +87,6 @@ function(rt_add_cli_tests stage)
                        PROPERTIES LABELS "cli;cli-${stage}")
 endfunction()
 
-rt_add_cli_tests(01_naive)
-if(TARGET 02_raster_hybrid)
-  rt_add_cli_tests(02_raster_hybrid)
-endif()
+foreach(stage IN LISTS RT_STAGES)   # tests/stages.txt
+  rt_add_cli_tests(${stage})
+endforeach()

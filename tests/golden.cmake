@@ -6,16 +6,19 @@ set_target_properties(image_compare PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_
 target_include_directories(image_compare PRIVATE ${PROJECT_SOURCE_DIR})
 target_link_libraries(image_compare PRIVATE OpenImageIO::OpenImageIO CLI11::CLI11 glm::glm)
 
+# tests/golden/scenes.txt: "<name> <scene> [arguments...]"; with --frames N the last frame is the one compared.
 file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/golden/scenes.txt golden_lines REGEX "^[^#]")
-set(RT_GOLDEN_SCENES "")
+set(RT_GOLDEN_CASES "")
 foreach(line IN LISTS golden_lines)
-  string(REGEX MATCH "^([^ \t]+)[ \t]+([^ \t]+)" _ "${line}")
-  list(APPEND RT_GOLDEN_SCENES "${CMAKE_MATCH_1}=${CMAKE_MATCH_2}")
+  string(STRIP "${line}" line)
+  string(REGEX REPLACE "[ \t]+" "|" line "${line}")   # name|scene|arg|arg...
+  list(APPEND RT_GOLDEN_CASES "${line}")
 endforeach()
 
 # rt_add_golden_test(STAGE <target> NAME <scene name> SCENE <spec> [REFERENCE_STAGE <stage>]
 #                    [REFERENCE_NAME <name>] [PREFIX golden] [ARGS ...])
-# REFERENCE_STAGE/REFERENCE_NAME compare with another golden (cross-stage agreement, far against whitted).
+# REFERENCE_STAGE/REFERENCE_NAME compare with another golden (cross-stage agreement, far against whitted). Only a
+# golden.* test writes its reference in update mode (RT_UPDATE_GOLDENS=1); the others refuse to run then.
 function(rt_add_golden_test)
   cmake_parse_arguments(G "" "STAGE;NAME;SCENE;REFERENCE_STAGE;REFERENCE_NAME;PREFIX" "ARGS;LABELS" ${ARGN})
   if(NOT G_REFERENCE_STAGE)
@@ -27,21 +30,26 @@ function(rt_add_golden_test)
   if(NOT G_PREFIX)
     set(G_PREFIX golden)
   endif()
+  set(own_reference 0)
+  if(G_PREFIX STREQUAL "golden" AND G_REFERENCE_STAGE STREQUAL G_STAGE AND G_REFERENCE_NAME STREQUAL G_NAME)
+    set(own_reference 1)
+  endif()
   string(REPLACE ";" "|" args "${G_ARGS}")   # "|"-separated: a ";" would split the test command
   add_test(NAME ${G_PREFIX}.${G_STAGE}.${G_NAME}
            COMMAND ${CMAKE_COMMAND} -DSTAGE=$<TARGET_FILE:${G_STAGE}> -DSTAGE_NAME=${G_STAGE} -DSCENE=${G_SCENE}
                    -DNAME=${G_NAME} -DGOLDEN=${PROJECT_SOURCE_DIR}/tests/golden/${G_REFERENCE_STAGE}/${G_REFERENCE_NAME}.png
+                   -DOWN_REFERENCE=${own_reference}
                    -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/${G_PREFIX}/${G_STAGE} -DCOMPARE=$<TARGET_FILE:image_compare>
                    "-DARGS=${args}" -P ${CMAKE_CURRENT_SOURCE_DIR}/run_golden.cmake)
   set_tests_properties(${G_PREFIX}.${G_STAGE}.${G_NAME} PROPERTIES LABELS "${G_PREFIX};${G_PREFIX}-${G_STAGE};${G_LABELS}")
 endfunction()
 
+# One test per line of tests/golden/scenes.txt, all with the same PREFIX/REFERENCE_STAGE (extra arguments).
 function(rt_add_golden_tests stage)
-  foreach(entry IN LISTS RT_GOLDEN_SCENES)
-    string(REPLACE "=" ";" pair "${entry}")
-    list(GET pair 0 name)
-    list(GET pair 1 scene)
-    rt_add_golden_test(STAGE ${stage} NAME ${name} SCENE ${scene} ${ARGN})
+  foreach(entry IN LISTS RT_GOLDEN_CASES)
+    string(REPLACE "|" ";" fields "${entry}")
+    list(POP_FRONT fields name scene)
+    rt_add_golden_test(STAGE ${stage} NAME ${name} SCENE ${scene} ARGS ${fields} ${ARGN})
   endforeach()
 endfunction()
 
@@ -51,17 +59,11 @@ function(rt_add_far_test stage)
                      PREFIX far_like_whitted)
 endfunction()
 
-rt_add_golden_tests(01_naive)
-rt_add_far_test(01_naive)
-if(TARGET 02_raster_hybrid)
-  rt_add_golden_tests(02_raster_hybrid)
-  rt_add_far_test(02_raster_hybrid)
-  # Cross-stage agreement: 02's images match 01's references within the same tolerance.
-  foreach(entry IN LISTS RT_GOLDEN_SCENES)
-    string(REPLACE "=" ";" pair "${entry}")
-    list(GET pair 0 name)
-    list(GET pair 1 scene)
-    rt_add_golden_test(STAGE 02_raster_hybrid NAME ${name} SCENE ${scene} REFERENCE_STAGE 01_naive PREFIX agree)
-  endforeach()
-endif()
-
+foreach(stage IN LISTS RT_STAGES)
+  rt_add_golden_tests(${stage})
+  rt_add_far_test(${stage})
+  if(NOT stage STREQUAL "01_naive")
+    # Cross-stage agreement: every later stage's images match 01's references within the same tolerance.
+    rt_add_golden_tests(${stage} REFERENCE_STAGE 01_naive PREFIX agree)
+  endif()
+endforeach()

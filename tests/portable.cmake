@@ -1,11 +1,7 @@
 # The portable build (RT_PORTABLE=ON) for bare GPU machines: configure and build the stages in
 # build/portable, then check with ldd that each binary needs nothing beyond the C/C++ runtime, libEGL and the small
 # libraries listed in tests/check_portable.cmake. Slow (a second build), so it has its own label: "portable".
-set(rt_stage_targets 01_naive)
-if(TARGET 02_raster_hybrid)
-  list(APPEND rt_stage_targets 02_raster_hybrid)
-endif()
-string(REPLACE ";" "|" rt_stage_targets "${rt_stage_targets}")
+string(REPLACE ";" "|" rt_stage_targets "${RT_STAGES}")
 add_test(NAME portable.binaries_need_only_small_libraries
          COMMAND ${CMAKE_COMMAND} -DSOURCE=${PROJECT_SOURCE_DIR} -DBUILD=${CMAKE_BINARY_DIR}/portable
                  "-DTARGETS=${rt_stage_targets}" -P ${CMAKE_CURRENT_SOURCE_DIR}/check_portable.cmake)

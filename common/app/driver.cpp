@@ -17,6 +17,8 @@
 #include "../scene/builtin_scenes.h"
 #include "../scene/gltf_io.h"
 #include "atomic_file.h"
+#include "heatmap.h"
+#include "hit_file.h"
 #include "options.h"
 #include "output_files.h"
 #include "progress.h"
@@ -203,6 +205,8 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
             throw InputError(e.what());
         }
         effect_names = settings.effects.names();
+        settings.record_hits = !options.dump_hits.empty();
+        settings.record_tests_per_pixel = !options.heatmap.empty();
 
         const auto start = std::chrono::steady_clock::now();
         FrameResult result = renderer.render(scene, settings);
@@ -212,6 +216,16 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
         if (!path.empty())
             files.write({"--out", path}, [&](const std::string& file) { write_image_file(file, result.image); });
+        if (!options.dump_hits.empty())
+            files.write({"--dump-hits", frame_path(options.dump_hits, frame, options.frames)},
+                        [&](const std::string& file) { write_hit_file(file, result.hits); });
+        if (!options.heatmap.empty()) {
+            const Heatmap heatmap = make_heatmap(result.tests_per_pixel, settings.width, settings.height,
+                                                 options.heatmap_scale);
+            files.write({"--heatmap", frame_path(options.heatmap, frame, options.frames)},
+                        [&](const std::string& file) { write_image_file(file, heatmap.image); });
+            result.extra["heatmap"] = heatmap_json(heatmap);
+        }
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
         total.add(result.stats);
         if (options.frames > 1)

@@ -58,6 +58,11 @@ void add_shared_options(CLI::App& app, Options& o) {
     app.add_flag("--quiet", o.render.quiet, "No progress bar or summary line");
     app.add_option("--threads", o.render.threads, "CPU threads (0 = all)")->capture_default_str()->check(number_in(0, 1024));
     app.add_option("--export", o.export_path, "Write the scene as glTF 2.0 (.gltf or .glb) to open it in Blender");
+    // Diagnostics (with --frames, one file per frame like --out).
+    app.add_option("--dump-hits", o.dump_hits, "Write every traced ray and its hit to FILE (common/app/hit_record.h)");
+    app.add_option("--heatmap", o.heatmap, "Write a false-colour image of the ray/triangle tests per pixel to FILE");
+    add_enum(app, "--heatmap-scale", o.heatmap_scale, {{"linear", HeatmapScale::Linear}, {"log", HeatmapScale::Log}},
+             "Colour scale of --heatmap");
     app.add_option("--frames", o.frames, "Number of frames for animated scenes (at most 10000)")->capture_default_str()
         ->check(number_in(1, kMaxFrames));
     app.add_option("--fps", o.fps, "Frames per second (frame i is rendered at t = i / fps)")->capture_default_str()
@@ -79,6 +84,11 @@ void add_shared_options(CLI::App& app, Options& o) {
 
 void validate_options(const Options& o) {
     namespace fs = std::filesystem;
+    if (!o.heatmap.empty() && !is_supported_image_path(o.heatmap))
+        throw std::invalid_argument("unsupported image type for --heatmap: " + o.heatmap + " (use " + supported_image_types() + ")");
+    // A ray's path number doubles per bounce (hit_record.h) and must fit 31 bits.
+    if (!o.dump_hits.empty() && o.render.max_depth > 30)
+        throw std::invalid_argument("--dump-hits needs --max-depth 30 or less (ray path numbers have 31 bits)");
     if (!o.out.empty() && !is_supported_image_path(o.out))
         throw std::invalid_argument("unsupported image type for --out: " + o.out + " (use " + supported_image_types() + ")");
     if (!o.export_path.empty()) {
@@ -93,8 +103,11 @@ std::vector<OutputPath> planned_outputs(const Options& o) {
     std::vector<OutputPath> outputs;
     if (!o.export_path.empty()) outputs.push_back({"--export", o.export_path});
     if (!o.stats.empty()) outputs.push_back({"--stats", o.stats});
-    if (!o.out.empty())
-        for (int frame = 0; frame < o.frames; ++frame) outputs.push_back({"--out", frame_path(o.out, frame, o.frames)});
+    // Per-frame outputs: one file per frame with --frames (frame_path).
+    for (const auto& [option, path] : {std::pair<const char*, const std::string&>{"--out", o.out},
+                                       {"--dump-hits", o.dump_hits}, {"--heatmap", o.heatmap}})
+        if (!path.empty())
+            for (int frame = 0; frame < o.frames; ++frame) outputs.push_back({option, frame_path(path, frame, o.frames)});
     return outputs;
 }
 

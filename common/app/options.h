@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "output_files.h"
+#include "heatmap.h"
 #include "renderer.h"
 
 namespace rt {
@@ -20,6 +21,9 @@ struct Options {
     std::string out;                          // image file; empty = no image
     std::string stats;                        // stats JSON file; empty = none
     std::string export_path;                  // write the scene as glTF
+    std::string dump_hits;                    // --dump-hits: every traced ray and its hit (hit_record.h)
+    std::string heatmap;                      // --heatmap: false-colour ray/triangle tests per pixel (heatmap.h)
+    HeatmapScale heatmap_scale = HeatmapScale::Linear;
     std::string effects = "auto";
     int camera = -1;
     int frames = 1;

@@ -14,7 +14,7 @@
 #include <set>
 #include <tuple>
 
-#include "01_naive/brute_force_tracer.h"
+#include "common/trace/brute_force_tracer.h"
 #include "../app/pixel_samples.h"
 #include "../scene/builtin_scenes.h"
 #include "../scene/effects.h"

@@ -11,7 +11,9 @@
 #pragma once
 
 #include <algorithm>
+#include <vector>
 
+#include "../app/hit_record.h"
 #include "../scene/effects.h"
 #include "../scene/scene.h"
 #include "intersect.h"
@@ -27,6 +29,30 @@ struct WhittedSettings {
     OffsetMethod offset = OffsetMethod::Robust;
     float epsilon = kDefaultEpsilon;
     Effects effects;
+};
+
+// Where the rays of one camera sample go when hits are recorded (--dump-hits): the records of hit_record.h.
+struct HitLog {
+    std::vector<HitRecord>* records;
+    std::uint32_t sample = 0;
+    std::uint32_t pixel = 0;   // y * width + x
+
+    template <class T>
+    void add(std::uint32_t path, HitRecordKind kind, std::uint32_t light, const Ray<T>& ray, std::int32_t triangle,
+             float t) const {
+        HitRecord r;
+        r.sample = sample;
+        r.pixel = pixel;
+        r.path = path;
+        r.kind_light = std::uint32_t(kind) | (light << 8);
+        r.triangle = triangle;
+        r.t = t;
+        for (int i = 0; i < 3; ++i) {
+            r.origin[i] = float(ray.origin[i]);
+            r.direction[i] = float(ray.direction[i]);
+        }
+        records->push_back(r);
+    }
 };
 
 inline float max_component(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
@@ -74,10 +100,20 @@ public:
         : scene_(scene), tracer_(tracer), settings_(settings) {}
 
     // Radiance arriving along `ray`; `weight` is the product of the coefficients on the path so far (the path stops
-    // spawning rays once a child's weight falls below the cut-off).
-    glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& weight, RayCounters& counters) const {
+    // spawning rays once a child's weight falls below the cut-off). With a `log`, every traced ray is recorded under
+    // its `path` in the pixel's ray tree (hit_record.h: 1 for the primary ray, 2p and 2p + 1 for the reflection and
+    // refraction children of path p; shadow rays carry their parent's path and their light's index).
+    glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& weight, RayCounters& counters,
+                       const HitLog* log = nullptr, std::uint32_t path = 1) const {
         Hit<T> hit;
-        if (!tracer_.closest(ray, hit, counters)) return scene_.background;
+        const bool found = tracer_.closest(ray, hit, counters);
+        if (log) {
+            const HitRecordKind kind = path == 1   ? HitRecordKind::Primary
+                                       : path & 1u ? HitRecordKind::Refraction
+                                                   : HitRecordKind::Reflection;
+            log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f);
+        }
+        if (!found) return scene_.background;
         const SurfacePoint<T> sp = surface_point(scene_, ray, hit);
         const Material& material = scene_.materials[sp.material];
         glm::vec4 tex(1.0f);
@@ -89,7 +125,8 @@ public:
 
         // Local illumination: emission, ambient, and each light not blocked by a shadow ray.
         glm::vec3 color = s.emissive + kAmbient * s.diffuse;
-        for (const Light& light : scene_.lights) {
+        for (std::uint32_t light_index = 0; light_index < scene_.lights.size(); ++light_index) {
+            const Light& light = scene_.lights[light_index];
             glm::vec3 to_light;
             float distance;
             const glm::vec3 incidence = light_incidence(light, glm::vec3(sp.position), n, to_light, distance);
@@ -102,7 +139,9 @@ public:
                                   ? std::numeric_limits<T>::infinity()
                                   : glm::length(Vec3<T>(light.position) - shadow.origin);
                 counters.rays[int(RayKind::Shadow)]++;
-                if (tracer_.occluded(shadow, counters)) continue;
+                const bool occluded = tracer_.occluded(shadow, counters);
+                if (log) log->add(path, HitRecordKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f);
+                if (occluded) continue;
             }
             color += shade_light(s, incidence, n, to_light, -d);
         }
@@ -123,7 +162,7 @@ public:
             r.direction = glm::normalize(Vec3<T>(dir));
             r.origin = spawn_origin(sp, r.direction);
             counters.rays[int(RayKind::Reflection)]++;
-            color += k.reflection * radiance(r, depth + 1, weight * k.reflection, counters);
+            color += k.reflection * radiance(r, depth + 1, weight * k.reflection, counters, log, 2 * path);
         }
         if (settings_.effects.refractions && max_component(weight * k.refraction) > settings_.cutoff) {
             glm::vec3 dir;
@@ -132,7 +171,8 @@ public:
                 r.direction = glm::normalize(Vec3<T>(dir));
                 r.origin = spawn_origin(sp, r.direction);
                 counters.rays[int(RayKind::Refraction)]++;
-                color += k.refraction * radiance(r, depth + 1, weight * k.refraction, counters);
+                color += k.refraction * radiance(r, depth + 1, weight * k.refraction, counters, log,
+                                                      2 * path + 1);
             }
         }
         return color;

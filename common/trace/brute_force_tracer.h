@@ -1,5 +1,8 @@
-// The technique of stage 01: no acceleration structure. Every ray is tested against every triangle.
-//   closest():  keep the nearest hit, shrinking tmax as hits are found.
+// The reference tracer: no acceleration structure, every ray is tested against every triangle. It is the technique
+// of stage 01 and the reference every test of a faster structure compares with.
+//   closest():  keep the nearest hit, shrinking tmax as hits are found. Ties at equal t go to the lowest triangle id
+//               (the exact hit checks between stages rely on it): triangles are tested in id order and a later one
+//               replaces the hit only when strictly closer.
 //   occluded(): shadow rays only need to know whether anything blocks the light, so stop at the first hit.
 #pragma once
 
@@ -58,6 +61,9 @@ public:
 
 private:
     static void record(Ray<T>& r, Hit<T>& hit, std::size_t i, T t, T u, T v) {
+        // The watertight test compares t with tmax before dividing, so rounding may let an equal t through: keep the
+        // earlier (lower id) triangle then.
+        if (!(t < hit.t)) return;
         r.tmax = t;   // later triangles must beat this hit
         hit.t = t;
         hit.u = u;
