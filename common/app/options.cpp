@@ -31,6 +31,8 @@ void add_shared_options(CLI::App& app, Options& o) {
     app.add_option("--frames", o.frames, "Number of frames for animated scenes")->capture_default_str()->check(CLI::Range(1, 100000));
     app.add_option("--fps", o.fps, "Frames per second (frame i is rendered at t = i / fps)")->capture_default_str()
         ->check(CLI::Range(1e-3, 1e4));
+    app.add_option("--max-triangles", o.max_triangles, "Refuse scenes with more triangles per frame than this")
+        ->capture_default_str()->check(CLI::PositiveNumber);
     // Accuracy knobs (docs/accuracy.md measures what each costs).
     add_enum(app, "--intersect", o.render.intersect,
              {{"moller", IntersectMethod::Moller}, {"watertight", IntersectMethod::Watertight}},

@@ -1,18 +1,13 @@
 // Reading and writing glTF 2.0 (.gltf and .glb) through tinygltf.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 
 #include "scene.h"
 
 namespace rt {
 
-// Thrown for anything that makes a scene unusable: missing file, malformed JSON, bad accessor, unsupported content.
-// what() is one line meant for the user.
-struct SceneError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+// Errors are thrown as SceneError (scene.h), one line naming the file.
 
 // Loads the default scene of a glTF file (.gltf or .glb by extension). Reads: node hierarchy and TRS/matrix
 // transforms, TRIANGLES primitives (indexed or not; other modes are skipped with a warning), POSITION, NORMAL,

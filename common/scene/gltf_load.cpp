@@ -7,11 +7,14 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <string_view>
 #include <system_error>
 
 #include <tiny_gltf.h>
 
 #include "gltf_common.h"
+#include "gltf_files.h"
+#include "gltf_validate.h"
 
 namespace rt {
 
@@ -497,19 +500,37 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
     const std::string ext = lower_extension(path);
     if (ext != ".gltf" && ext != ".glb")
         throw SceneError(prefix + "unknown extension '" + ext + "' (expected .gltf or .glb)");
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw SceneError(prefix + "no such file");
+    const bool binary = ext == ".glb";
 
+    // The file itself, then checks on its JSON before tinygltf parses it.
+    std::vector<unsigned char> bytes;
+    if (const std::string problem = read_regular_file(path, bytes); !problem.empty())
+        throw SceneError(prefix + problem);
+    try {
+        const std::string_view json =
+            binary ? glb_json_chunk(bytes) : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        check_json_depth(json);
+        validate_gltf_json(json);
+    } catch (const Invalid& e) {
+        throw SceneError(prefix + one_line(e.reason));
+    }
+
+    // Buffers and images by URI: regular files only, each recorded.
+    FileReads reads;
     tinygltf::TinyGLTF gltf;
+    gltf.SetFsCallbacks(regular_file_callbacks(reads));
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
+    const std::string base_dir = fs::path(path).parent_path().string();
     try {
-        ok = ext == ".glb" ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
-                           : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
+        ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir)
+                    : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                               unsigned(bytes.size()), base_dir);
     } catch (const std::exception& e) {   // the JSON parser may throw on some inputs
         throw SceneError(prefix + one_line(e.what()));
     }
+    if (!reads.error.empty()) throw SceneError(prefix + reads.error);
     if (!ok) throw SceneError(prefix + one_line(err.empty() ? warn : err));
 
     Loader loader{model, {}};
@@ -521,7 +542,8 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
         throw SceneError(prefix + one_line(e.reason));
     }
     asset.name = fs::path(path).stem().string();
-    asset.input_files.insert(asset.input_files.begin(), path);
+    asset.input_files = {path};
+    asset.input_files.insert(asset.input_files.end(), reads.files.begin(), reads.files.end());
     if (warnings) *warnings += loader.warnings;
     return asset;
 }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,12 @@
 #include <glm/gtc/quaternion.hpp>
 
 namespace rt {
+
+// Thrown for anything that makes a scene unusable: missing file, malformed JSON, bad accessor, unsupported content,
+// a scene beyond a limit. what() is one line meant for the user.
+struct SceneError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 // An axis-aligned box; empty until the first point is added.
 struct Bounds {
@@ -170,15 +177,21 @@ struct Scene {
     std::size_t triangle_count() const { return material_ids.size(); }
 };
 
+constexpr std::uint64_t kDefaultMaxTriangles = 20'000'000;
+
 struct FlattenOptions {
     float time = 0.0f;            // seconds, for animations (all animations play together, clamped to their ends)
     int camera = -1;              // glTF camera index; -1 = first camera in node order, else auto-framed
     float aspect = 4.0f / 3.0f;   // image width / height, used for auto-framing
     bool add_default_light = true;
+    // Refuse frames with more triangles than this (docs/shading.md, "Limits"): 20 million triangles are about 2 GB
+    // of flattened vertex data before any acceleration structure or GPU copy.
+    std::uint64_t max_triangles = kDefaultMaxTriangles;
 };
 
 // Evaluates the asset at a time and bakes everything into world space. Triangles whose vertices are not finite are
 // dropped (counted in dropped_triangles when given); degenerate triangles are kept (the intersectors must cope).
+// Throws SceneError, before allocating, when the frame has more than options.max_triangles triangles.
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles = nullptr);
 
 // The auto-framed camera and key light used when an asset has none (docs/shading.md, "Defaults").
