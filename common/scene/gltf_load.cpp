@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -36,27 +37,31 @@ const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const std::s
     return it == map.end() ? nullptr : &it->second;
 }
 
-float number(const tinygltf::Value* object, const std::string& key, float fallback) {
+double number(const tinygltf::Value* object, const std::string& key, double fallback) {
     if (!object) return fallback;
     const tinygltf::Value* v = member(*object, key);
-    return v && v->IsNumber() ? float(v->GetNumberAsDouble()) : fallback;
+    return v && v->IsNumber() ? v->GetNumberAsDouble() : fallback;
 }
 
-glm::vec3 vec3(const tinygltf::Value* object, const std::string& key, glm::vec3 fallback) {
+// An array of numbers, or the fallback when it is missing or not all numbers.
+std::vector<double> numbers(const tinygltf::Value* object, const std::string& key, std::vector<double> fallback) {
     if (!object) return fallback;
     const tinygltf::Value* v = member(*object, key);
-    if (!v || !v->IsArray() || v->ArrayLen() != 3) return fallback;
-    glm::vec3 out;
-    for (int i = 0; i < 3; ++i) {
+    if (!v || !v->IsArray()) return fallback;
+    std::vector<double> out;
+    for (int i = 0; i < int(v->ArrayLen()); ++i) {
         const tinygltf::Value& e = v->Get(i);
         if (!e.IsNumber()) return fallback;
-        out[i] = float(e.GetNumberAsDouble());
+        out.push_back(e.GetNumberAsDouble());
     }
     return out;
 }
 
-glm::vec3 vec3(const std::vector<double>& v, glm::vec3 fallback) {
-    return v.size() == 3 ? glm::vec3(float(v[0]), float(v[1]), float(v[2])) : fallback;
+// A number for a message: short, never 309 digits.
+std::string describe(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v);
+    return text;
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -190,6 +195,32 @@ struct Loader {
 
     void warn(const std::string& message) { warnings += message + "\n"; }
 
+    // Numbers from the file (docs/shading.md, "Values from files"): one that does not fit a float (NaN, infinite,
+    // beyond 3.4e38) is refused; one outside [lo, hi] (glTF's range for it) is clamped with a warning.
+    float value(double v, const std::string& what, float lo = -std::numeric_limits<float>::max(),
+                float hi = std::numeric_limits<float>::max()) {
+        if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max()))
+            invalid(what + " is " + describe(v) + ", which does not fit a float");
+        const float f = float(v);
+        if (f >= lo && f <= hi) return f;
+        const float clamped = std::clamp(f, lo, hi);
+        warn(what + " " + describe(v) + " is outside [" + describe(lo) + ", " + describe(hi) + "]; clamped to " +
+             describe(clamped));
+        return clamped;
+    }
+
+    // Exactly n numbers through value(), or the fallback when the file gives none.
+    template <int N>
+    glm::vec<N, float> values(const std::vector<double>& v, const std::string& what, glm::vec<N, float> fallback,
+                              float lo = -std::numeric_limits<float>::max(),
+                              float hi = std::numeric_limits<float>::max()) {
+        if (v.empty()) return fallback;
+        if (v.size() != std::size_t(N)) invalid(what + " must have " + std::to_string(N) + " numbers");
+        glm::vec<N, float> out;
+        for (int i = 0; i < N; ++i) out[i] = value(v[std::size_t(i)], what, lo, hi);
+        return out;
+    }
+
     void check_index(int i, std::size_t size, const std::string& what) const {
         if (i < -1 || (i >= 0 && std::size_t(i) >= size))
             invalid(what + " " + std::to_string(i) + " does not exist");
@@ -255,12 +286,10 @@ struct Loader {
         Material out;
         out.name = m.name;
         const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() == 4)
-            out.base_color = glm::vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
-                                       float(pbr.baseColorFactor[2]), float(pbr.baseColorFactor[3]));
-        out.metallic = float(pbr.metallicFactor);
-        out.roughness = float(pbr.roughnessFactor);
         const std::string name = "material " + std::to_string(index);
+        out.base_color = values<4>(pbr.baseColorFactor, name + ": baseColorFactor", glm::vec4(1.0f), 0.0f, 1.0f);
+        out.metallic = value(pbr.metallicFactor, name + ": metallicFactor", 0.0f, 1.0f);
+        out.roughness = value(pbr.roughnessFactor, name + ": roughnessFactor", 0.0f, 1.0f);
         if (pbr.baseColorTexture.index >= 0) {
             check_index(pbr.baseColorTexture.index, model.textures.size(), name + ": texture");
             if (pbr.baseColorTexture.texCoord != 0)
@@ -269,14 +298,18 @@ struct Loader {
             else
                 out.base_color_texture = pbr.baseColorTexture.index;
         }
-        out.emissive = vec3(m.emissiveFactor, glm::vec3(0.0f)) *
-                       number(extension(m.extensions, "KHR_materials_emissive_strength"), "emissiveStrength", 1.0f);
-        out.transmission =
-            number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0f);
-        out.ior = number(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5f);
+        const float strength = value(number(extension(m.extensions, "KHR_materials_emissive_strength"),
+                                            "emissiveStrength", 1.0),
+                                     name + ": emissiveStrength", 0.0f);
+        // factor <= 1, so the product fits a float too
+        out.emissive = values<3>(m.emissiveFactor, name + ": emissiveFactor", glm::vec3(0.0f), 0.0f, 1.0f) * strength;
+        out.transmission = value(number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0),
+                                 name + ": transmissionFactor", 0.0f, 1.0f);
+        out.ior = value(number(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5), name + ": ior", 1.0f);
         const tinygltf::Value* specular = extension(m.extensions, "KHR_materials_specular");
-        out.specular = number(specular, "specularFactor", 1.0f);
-        out.specular_color = vec3(specular, "specularColorFactor", glm::vec3(1.0f));
+        out.specular = value(number(specular, "specularFactor", 1.0), name + ": specularFactor", 0.0f, 1.0f);
+        out.specular_color = values<3>(numbers(specular, "specularColorFactor", {}), name + ": specularColorFactor",
+                                       glm::vec3(1.0f), 0.0f);
         return out;
     }
 
@@ -333,18 +366,18 @@ struct Loader {
         const std::string name = "camera " + std::to_string(index);
         if (c.type == "orthographic") {
             out.projection = Projection::Orthographic;
-            out.xmag = float(c.orthographic.xmag);
-            out.ymag = float(c.orthographic.ymag);
-            out.znear = float(c.orthographic.znear);
-            out.zfar = float(c.orthographic.zfar);
+            out.xmag = value(c.orthographic.xmag, name + ": xmag");
+            out.ymag = value(c.orthographic.ymag, name + ": ymag");
+            out.znear = value(c.orthographic.znear, name + ": znear");
+            out.zfar = value(c.orthographic.zfar, name + ": zfar");
             if (!(out.xmag != 0.0f && out.ymag != 0.0f && std::isfinite(out.xmag) && std::isfinite(out.ymag)))
                 invalid(name + ": invalid xmag/ymag");
         } else if (c.type == "perspective") {
             out.projection = Projection::Perspective;
-            out.yfov = float(c.perspective.yfov);
-            out.aspect = float(c.perspective.aspectRatio);
-            out.znear = float(c.perspective.znear);
-            out.zfar = float(c.perspective.zfar);
+            out.yfov = value(c.perspective.yfov, name + ": yfov");
+            out.aspect = value(c.perspective.aspectRatio, name + ": aspectRatio");
+            out.znear = value(c.perspective.znear, name + ": znear");
+            out.zfar = value(c.perspective.zfar, name + ": zfar");
             if (!(out.yfov > 0.0f && out.yfov < 3.14159f)) invalid(name + ": invalid yfov");
             if (!(out.aspect >= 0.0f) || !std::isfinite(out.aspect)) out.aspect = 0.0f;
         } else {
@@ -364,11 +397,13 @@ struct Loader {
             out.intensity = 0.0f;
             return out;
         }
-        out.color = vec3(l.color, glm::vec3(1.0f));
-        out.intensity = float(l.intensity);
-        out.range = float(l.range);
-        out.inner_cone = float(l.spot.innerConeAngle);
-        out.outer_cone = float(l.spot.outerConeAngle);
+        const std::string name = "light " + std::to_string(index);
+        out.color = values<3>(l.color, name + ": color", glm::vec3(1.0f), 0.0f, 1.0f);
+        out.intensity = value(l.intensity, name + ": intensity", 0.0f);
+        out.range = value(l.range, name + ": range", 0.0f);
+        const float quarter_turn = 1.5707964f;
+        out.inner_cone = value(l.spot.innerConeAngle, name + ": innerConeAngle", 0.0f, quarter_turn);
+        out.outer_cone = value(l.spot.outerConeAngle, name + ": outerConeAngle", 0.0f, quarter_turn);
         return out;
     }
 
@@ -379,14 +414,15 @@ struct Loader {
         if (n.matrix.size() == 16) {
             glm::mat4 m;
             for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r) m[c][r] = float(n.matrix[std::size_t(4 * c + r)]);   // column-major
+                for (int r = 0; r < 4; ++r)   // column-major
+                    m[c][r] = value(n.matrix[std::size_t(4 * c + r)], name + ": matrix");
             out.matrix = m;
         } else {
-            if (n.translation.size() == 3) out.translation = vec3(n.translation, glm::vec3(0.0f));
-            if (n.scale.size() == 3) out.scale = vec3(n.scale, glm::vec3(1.0f));
+            out.translation = values<3>(n.translation, name + ": translation", glm::vec3(0.0f));
+            out.scale = values<3>(n.scale, name + ": scale", glm::vec3(1.0f));
             if (n.rotation.size() == 4)   // glTF stores x, y, z, w
-                out.rotation = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
-                                         float(n.rotation[2]));
+                out.rotation = glm::quat(value(n.rotation[3], name + ": rotation"), value(n.rotation[0], name + ": rotation"),
+                                         value(n.rotation[1], name + ": rotation"), value(n.rotation[2], name + ": rotation"));
         }
         check_index(n.mesh, model.meshes.size(), name + ": mesh");
         check_index(n.camera, model.cameras.size(), name + ": camera");
@@ -442,6 +478,9 @@ struct Loader {
                     invalid(name + ": key times must be finite and increasing");
             const int comps = c.path == AnimationPath::Rotation ? 4 : 3;
             c.values = read_vectors(model, s.output, comps, c.path == AnimationPath::Rotation, name + " output");
+            for (const glm::vec4& v : c.values)
+                if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w))
+                    invalid(name + ": output values must be finite");
             const std::size_t per_key = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
             if (c.values.size() != per_key * c.times.size()) invalid(name + ": input and output counts do not match");
             if (c.times.empty()) continue;
@@ -480,7 +519,8 @@ struct Loader {
             }
             // Our own extra: the background colour (written by save_gltf).
             if (const tinygltf::Value* bg = member(scene.extras, "rt_background"); bg && bg->IsArray())
-                out.background = vec3(&scene.extras, "rt_background", glm::vec3(0.0f));
+                out.background = values<3>(numbers(&scene.extras, "rt_background", {}), "rt_background",
+                                           glm::vec3(0.0f), 0.0f);
         } else {
             for (std::size_t i = 0; i < out.nodes.size(); ++i)
                 if (parents[i] == 0) out.roots.push_back(int(i));
