@@ -520,7 +520,7 @@ struct Loader {
             // Our own extra: the background colour (written by save_gltf).
             if (const tinygltf::Value* bg = member(scene.extras, "rt_background"); bg && bg->IsArray())
                 out.background = values<3>(numbers(&scene.extras, "rt_background", {}), "rt_background",
-                                           glm::vec3(0.0f), 0.0f);
+                                           glm::vec3(0.0f), 0.0f, kMaxRadiance);
         } else {
             for (std::size_t i = 0; i < out.nodes.size(); ++i)
                 if (parents[i] == 0) out.roots.push_back(int(i));

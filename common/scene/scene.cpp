@@ -180,7 +180,7 @@ void place_camera(Camera& cam, const glm::mat4& world) {
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles) {
     Scene scene;
     scene.name = asset.name;
-    scene.background = asset.background;
+    scene.background = glm::clamp(asset.background, glm::vec3(0.0f), glm::vec3(kMaxRadiance));
     scene.materials = asset.materials;
     scene.textures = asset.textures;
     for (Material& m : scene.materials)
@@ -217,7 +217,8 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
             Light light = asset.lights[std::size_t(node.light)];
             light.position = glm::vec3(world[3]);
             light.direction = safe_normalize(-glm::vec3(world[2]), glm::vec3(0, 0, -1));
-            scene.lights.push_back(light);
+            // A light placed by transforms that overflow a float lights nothing (like a triangle there, dropped).
+            if (finite(light.position)) scene.lights.push_back(light);
         }
 
         if (node.mesh < 0 || std::size_t(node.mesh) >= asset.meshes.size()) continue;
@@ -288,6 +289,8 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     if (chosen_camera) {
         scene.camera = *chosen_camera;
         place_camera(scene.camera, camera_world);
+        if (!finite(scene.camera.position))
+            throw SceneError("scene " + asset.name + ": the camera's transforms overflow a float (position is not finite)");
     } else if (options.camera >= 0) {
         throw std::out_of_range("the scene has no camera " + std::to_string(options.camera) + " on a node (it has " +
                                 std::to_string(asset.cameras.size()) + " cameras)");

@@ -36,6 +36,11 @@ struct Bounds {
     float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }
 };
 
+// Largest irradiance a light delivers, emitted radiance and background radiance (docs/shading.md, "Limits"): far
+// above any real scene (the sun gives 1e5 lux, a 1e7 cd lamp 1 mm away 1e13), low enough that summing lights,
+// bounces and samples can never reach a float's 3.4e38. Clamped where the value is formed, so no pixel is infinite.
+constexpr float kMaxRadiance = 1e20f;
+
 // An 8-bit texture exactly as stored in the file: RGBA, sRGB-encoded for base colour. Sampling converts to linear.
 struct Texture {
     std::string name;
@@ -149,7 +154,7 @@ struct SceneAsset {
     std::vector<Camera> cameras;        // projection parameters; placement comes from the node
     std::vector<Light> lights;          // colour/intensity/cone; placement comes from the node
     std::vector<Animation> animations;
-    glm::vec3 background{0.0f};         // linear radiance of rays that leave the scene
+    glm::vec3 background{0.0f};         // linear radiance of rays that leave the scene (at most kMaxRadiance)
     // Every file the loader read (the scene file, its buffers and images), as given; empty for built-in scenes.
     // The driver refuses an output path naming one of them.
     std::vector<std::string> input_files;
