@@ -43,7 +43,53 @@ bool refuse_write(std::string* err, const std::string&, const std::vector<unsign
     return false;
 }
 
+// Width and height from a PNG (IHDR) or JPEG (first SOFn segment) header; false for anything else.
+bool image_size(const unsigned char* b, std::size_t n, std::uint32_t& width, std::uint32_t& height) {
+    auto be16 = [&](std::size_t at) { return std::uint32_t(b[at]) << 8 | b[at + 1]; };
+    auto be32 = [&](std::size_t at) { return be16(at) << 16 | be16(at + 2); };
+    if (n >= 24 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0) {
+        width = be32(16);
+        height = be32(20);
+        return true;
+    }
+    if (n < 4 || b[0] != 0xFF || b[1] != 0xD8) return false;
+    for (std::size_t at = 2; at + 9 <= n;) {   // segments: FF, marker, 16-bit length (including itself), data
+        if (b[at] != 0xFF) return false;
+        const unsigned marker = b[at + 1];
+        const bool start_of_frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
+                                    marker != 0xCC;   // C4, C8, CC: Huffman and arithmetic tables, not frames
+        if (start_of_frame) {
+            height = be16(at + 5);
+            width = be16(at + 7);
+            return true;
+        }
+        at += 2 + be16(at + 2);
+    }
+    return false;
+}
+
 }  // namespace
+
+bool load_image_within_limits(tinygltf::Image* image, int index, std::string* err, std::string* warn, int req_width,
+                              int req_height, const unsigned char* bytes, int size, void* user_data) {
+    auto& reads = *static_cast<FileReads*>(user_data);
+    std::uint32_t width = 0, height = 0;
+    if (size > 0 && image_size(bytes, std::size_t(size), width, height)) {
+        std::string problem;
+        if (width > std::uint32_t(kMaxImageSide) || height > std::uint32_t(kMaxImageSide))
+            problem = "is " + std::to_string(width) + " x " + std::to_string(height) + " pixels, more than " +
+                      std::to_string(kMaxImageSide) + " on a side";
+        else if (reads.texels + std::uint64_t(width) * height > kMaxImageTexels)
+            problem = "brings the file's images past " + std::to_string(kMaxImageTexels) + " pixels in all";
+        if (!problem.empty()) {
+            if (reads.error.empty()) reads.error = "image " + std::to_string(index) + " " + problem;
+            if (err) *err += problem;
+            return false;
+        }
+        reads.texels += std::uint64_t(width) * height;
+    }
+    return tinygltf::LoadImageData(image, index, err, warn, req_width, req_height, bytes, size, nullptr);
+}
 
 std::string read_regular_file(const std::string& path, std::vector<unsigned char>& bytes) {
     bytes.clear();

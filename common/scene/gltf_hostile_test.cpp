@@ -106,7 +106,8 @@ TEST_F(GltfHostile, BracketsInsideStringsDoNotCountAsNesting) {
 }
 
 TEST_F(GltfHostile, GlbWithDeeplyNestedJsonChunkIsRefused) {
-    std::string chunk = R"({"asset":{"version":"2.0"},"extras":)" + std::string(5000, '[') + std::string(5000, ']') + "}";
+    std::string chunk =
+        R"({"asset":{"version":"2.0"},"extras":)" + std::string(5000, '[') + std::string(5000, ']') + "}";
     while (chunk.size() % 4) chunk += ' ';
     std::string glb = "glTF";
     auto u32 = [&](std::uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
@@ -143,6 +144,18 @@ TEST_F(GltfHostile, ImageUriNamingAFolderIsRefused) {
     json doc = triangle();
     doc["images"] = {{{"uri", "picture.png"}}};
     expect_refused(doc, "picture.png': is a folder");
+}
+
+TEST_F(GltfHostile, ImageLargerThanTheLimitIsRefusedBeforeDecoding) {
+    // Only a PNG signature and IHDR claiming 20000 x 100 pixels: refused from the header, never decoded.
+    std::string png = "\x89PNG\r\n\x1a\n";
+    png += std::string("\0\0\0\x0dIHDR", 8);
+    png += std::string("\0\0\x4e\x20\0\0\0\x64", 8);   // big-endian 20000, 100
+    png += std::string(17, '\0');
+    std::ofstream(file("big.png"), std::ios::binary) << png;
+    json doc = triangle();
+    doc["images"] = {{{"uri", "big.png"}}};
+    expect_refused(doc, "image 0 is 20000 x 100 pixels, more than 16384 on a side");
 }
 
 TEST_F(GltfHostile, InputFilesListTheSceneAndEveryBufferRead) {

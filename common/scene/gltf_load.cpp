@@ -303,8 +303,9 @@ struct Loader {
                                      name + ": emissiveStrength", 0.0f);
         // factor <= 1, so the product fits a float too
         out.emissive = values<3>(m.emissiveFactor, name + ": emissiveFactor", glm::vec3(0.0f), 0.0f, 1.0f) * strength;
-        out.transmission = value(number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0),
-                                 name + ": transmissionFactor", 0.0f, 1.0f);
+        out.transmission =
+            value(number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0),
+                  name + ": transmissionFactor", 0.0f, 1.0f);
         out.ior = value(number(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5), name + ": ior", 1.0f);
         const tinygltf::Value* specular = extension(m.extensions, "KHR_materials_specular");
         out.specular = value(number(specular, "specularFactor", 1.0), name + ": specularFactor", 0.0f, 1.0f);
@@ -421,8 +422,10 @@ struct Loader {
             out.translation = values<3>(n.translation, name + ": translation", glm::vec3(0.0f));
             out.scale = values<3>(n.scale, name + ": scale", glm::vec3(1.0f));
             if (n.rotation.size() == 4)   // glTF stores x, y, z, w
-                out.rotation = glm::quat(value(n.rotation[3], name + ": rotation"), value(n.rotation[0], name + ": rotation"),
-                                         value(n.rotation[1], name + ": rotation"), value(n.rotation[2], name + ": rotation"));
+                out.rotation = glm::quat(value(n.rotation[3], name + ": rotation"),
+                                         value(n.rotation[0], name + ": rotation"),
+                                         value(n.rotation[1], name + ": rotation"),
+                                         value(n.rotation[2], name + ": rotation"));
         }
         check_index(n.mesh, model.meshes.size(), name + ": mesh");
         check_index(n.camera, model.cameras.size(), name + ": camera");
@@ -547,8 +550,8 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
     if (const std::string problem = read_regular_file(path, bytes); !problem.empty())
         throw SceneError(prefix + problem);
     try {
-        const std::string_view json =
-            binary ? glb_json_chunk(bytes) : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        const std::string_view json = binary ? glb_json_chunk(bytes)
+                                             : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
         check_json_depth(json);
         validate_gltf_json(json);
     } catch (const Invalid& e) {
@@ -559,6 +562,7 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
     FileReads reads;
     tinygltf::TinyGLTF gltf;
     gltf.SetFsCallbacks(regular_file_callbacks(reads));
+    gltf.SetImageLoader(load_image_within_limits, &reads);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;

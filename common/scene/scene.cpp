@@ -290,7 +290,8 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
         scene.camera = *chosen_camera;
         place_camera(scene.camera, camera_world);
         if (!finite(scene.camera.position))
-            throw SceneError("scene " + asset.name + ": the camera's transforms overflow a float (position is not finite)");
+            throw SceneError("scene " + asset.name +
+                             ": the camera's transforms overflow a float (its position is not finite)");
     } else if (options.camera >= 0) {
         throw std::out_of_range("the scene has no camera " + std::to_string(options.camera) + " on a node (it has " +
                                 std::to_string(asset.cameras.size()) + " cameras)");
