@@ -550,8 +550,8 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
     if (const std::string problem = read_regular_file(path, bytes); !problem.empty())
         throw SceneError(prefix + problem);
     try {
-        const std::string_view json = binary ? glb_json_chunk(bytes)
-                                             : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        const std::string_view json = binary ? glb_json_chunk(bytes) : text;
         check_json_depth(json);
         validate_gltf_json(json);
     } catch (const Invalid& e) {
