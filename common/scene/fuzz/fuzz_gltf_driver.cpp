@@ -89,7 +89,7 @@ class Mutator {
         case 1: {   // a long chain of nodes ending in a mesh
             if (!doc.contains("meshes") || doc["meshes"].empty()) break;
             json& nodes = doc["nodes"];
-            const std::size_t first = nodes.size(), length = 1 + below(chance(20) ? 20'000 : 200);
+            const std::size_t first = nodes.size(), length = 1 + below(chance(5) ? 20'000 : 200);
             for (std::size_t i = 0; i < length; ++i) {
                 json node = {{"translation", {0.0, 0.01, 0.0}}};
                 if (i + 1 < length) node["children"] = {first + i + 1};
@@ -101,7 +101,7 @@ class Mutator {
         }
         case 2: {   // massive instancing of one mesh
             if (!doc.contains("meshes") || doc["meshes"].empty()) break;
-            const std::size_t first = doc["nodes"].size(), count = 1 + below(chance(30) ? 50'000 : 500);
+            const std::size_t first = doc["nodes"].size(), count = 1 + below(chance(10) ? 50'000 : 500);
             const std::size_t mesh = below(doc["meshes"].size());
             for (std::size_t i = 0; i < count; ++i) {
                 doc["nodes"].push_back({{"mesh", mesh}});
