@@ -137,13 +137,23 @@ void validate_scenes(const json& root) {
 }  // namespace
 
 void validate_gltf_json(std::string_view text) {
-    const json root = json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
-    if (root.is_discarded()) invalid("malformed JSON");
+    json root;
+    try {
+        root = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();   // says where; its "last read" part can be long: keep the start
+        if (what.size() > 200) what = what.substr(0, 200) + "...";
+        invalid("malformed JSON: " + what);
+    }
     if (!root.is_object()) invalid("the JSON is not an object");
-    validate_asset(root);
-    validate_extensions(root);
-    validate_scenes(root);
-    validate_nodes(root);
+    try {
+        validate_asset(root);
+        validate_extensions(root);
+        validate_scenes(root);
+        validate_nodes(root);
+    } catch (const json::exception& e) {   // the checks above test types first; this is a safety net
+        invalid(e.what());
+    }
 }
 
 }  // namespace rt::gltf_detail

@@ -72,8 +72,16 @@ class Mutator {
     std::size_t below(std::size_t n) { return n == 0 ? 0 : std::size_t(rng_() % n); }
     bool chance(int percent) { return below(100) < std::size_t(percent); }
 
-    // One structured change to the JSON document.
+    // One structured change to the JSON document. A change that does not fit the document as earlier changes left it
+    // (a member of the wrong type where it expects an array, say) is skipped.
     void mutate_json(json& doc) {
+        try {
+            mutate_json_once(doc);
+        } catch (const json::exception&) {
+        }
+    }
+
+    void mutate_json_once(json& doc) {
         std::vector<json::json_pointer> values;
         collect(doc, json::json_pointer(), values);
         const json::json_pointer at = values[below(values.size())];
