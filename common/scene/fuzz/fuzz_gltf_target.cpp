@@ -35,7 +35,11 @@ std::string scratch_path(bool binary) {
     return (dir / (binary ? "input.glb" : "input.gltf")).string();
 }
 
+std::size_t accepted = 0;
+
 }  // namespace
+
+std::size_t fuzz_gltf_accepted_inputs() { return accepted; }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
@@ -55,6 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             if (scene.positions.size() != 3 * scene.triangle_count() || scene.normals.size() != scene.positions.size())
                 std::abort();
         }
+        ++accepted;
     } catch (const rt::SceneError&) {
         // the expected answer to bad input
     }
