@@ -191,6 +191,12 @@ TEST_F(GltfHostile, InstancingBeyondTheTriangleBudgetIsRefusedBeforeFlattening) 
     EXPECT_EQ(FlattenOptions{}.max_triangles, kDefaultMaxTriangles);
 }
 
+TEST_F(GltfHostile, AccessorsAddingUpPastTheLoaderBudgetAreRefusedBeforeCopying) {
+    json doc = triangle();
+    doc["accessors"][0]["count"] = (std::uint64_t(1) << 28) + 1;
+    expect_refused(doc, "mesh 0 primitive 0: the file's accessors add up to more than 268435456 elements");
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Strict glTF: what tinygltf silently accepts.
 

@@ -14,6 +14,10 @@ namespace rt {
 // TEXCOORD_0, materials (baseColor factor/texture, metallic, roughness, emissive, KHR_materials_emissive_strength,
 // KHR_materials_transmission, KHR_materials_ior, KHR_materials_specular), cameras, KHR_lights_punctual and
 // animations (translation/rotation/scale channels). Warnings go to `warnings` when given.
+// Hostile input is refused before it can do harm (docs/shading.md, "Values from files" and "Limits"): JSON nested
+// deeper than 512 levels, malformed structure, unsupported extensionsRequired, numbers that do not fit a float, URIs
+// naming anything but a regular file (never opened, so a FIFO cannot block), oversized images. The scene file and
+// every buffer and image file read are listed in the result's input_files.
 SceneAsset load_gltf(const std::string& path, std::string* warnings = nullptr);
 
 // Writes an asset as glTF 2.0 (.gltf with embedded buffers and images, or .glb by extension), using the same

@@ -189,9 +189,26 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
 // ---------------------------------------------------------------------------------------------------------------
 // Loading.
 
+// Accessor elements the loader copies out of a file in all. Several primitives may share one accessor, so the
+// copies are not bounded by the file's size; 2^28 elements (about 3 GiB as vec3) allow a 20-million-triangle mesh
+// with normals and texture coordinates, unindexed (docs/shading.md, "Limits").
+constexpr std::uint64_t kMaxLoadedElements = std::uint64_t(1) << 28;
+
 struct Loader {
     const tinygltf::Model& model;
     std::string warnings;
+    std::uint64_t loaded_elements = 0;
+
+    // Counts an accessor's elements against kMaxLoadedElements before they are copied (a bad index is left for
+    // view_accessor to report).
+    int budget(int accessor, const std::string& what) {
+        if (accessor < 0 || std::size_t(accessor) >= model.accessors.size()) return accessor;
+        loaded_elements += model.accessors[std::size_t(accessor)].count;
+        if (loaded_elements > kMaxLoadedElements)
+            invalid(what + ": the file's accessors add up to more than " + std::to_string(kMaxLoadedElements) +
+                    " elements");
+        return accessor;
+    }
 
     void warn(const std::string& message) { warnings += message + "\n"; }
 
@@ -236,22 +253,22 @@ struct Loader {
         };
         const int position = attribute("POSITION");
         if (position < 0) invalid(name + ": no POSITION attribute");
-        for (const glm::vec4& v : read_vectors(model, position, 3, false, name + " POSITION"))
+        for (const glm::vec4& v : read_vectors(model, budget(position, name), 3, false, name + " POSITION"))
             out.positions.push_back(glm::vec3(v));
         const std::size_t nv = out.positions.size();
 
         if (const int normal = attribute("NORMAL"); normal >= 0) {
-            for (const glm::vec4& v : read_vectors(model, normal, 3, false, name + " NORMAL"))
+            for (const glm::vec4& v : read_vectors(model, budget(normal, name), 3, false, name + " NORMAL"))
                 out.normals.push_back(glm::vec3(v));
             if (out.normals.size() != nv) invalid(name + ": NORMAL and POSITION counts differ");
         }
         if (const int uv = attribute("TEXCOORD_0"); uv >= 0) {
-            for (const glm::vec4& v : read_vectors(model, uv, 2, true, name + " TEXCOORD_0"))
+            for (const glm::vec4& v : read_vectors(model, budget(uv, name), 2, true, name + " TEXCOORD_0"))
                 out.uvs.push_back(glm::vec2(v));
             if (out.uvs.size() != nv) invalid(name + ": TEXCOORD_0 and POSITION counts differ");
         }
         if (p.indices >= 0) {
-            out.indices = read_indices(model, p.indices, name + " indices");
+            out.indices = read_indices(model, budget(p.indices, name), name + " indices");
             for (std::uint32_t i : out.indices)
                 if (i >= nv)
                     invalid(name + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) +
@@ -475,12 +492,14 @@ struct Loader {
             else if (s.interpolation == "LINEAR" || s.interpolation.empty()) c.interpolation = Interpolation::Linear;
             else invalid(name + ": unknown interpolation '" + s.interpolation + "'");
 
-            for (const glm::vec4& t : read_vectors(model, s.input, 1, false, name + " input")) c.times.push_back(t.x);
+            for (const glm::vec4& t : read_vectors(model, budget(s.input, name), 1, false, name + " input"))
+                c.times.push_back(t.x);
             for (std::size_t k = 0; k < c.times.size(); ++k)
                 if (!std::isfinite(c.times[k]) || (k > 0 && c.times[k] < c.times[k - 1]))
                     invalid(name + ": key times must be finite and increasing");
             const int comps = c.path == AnimationPath::Rotation ? 4 : 3;
-            c.values = read_vectors(model, s.output, comps, c.path == AnimationPath::Rotation, name + " output");
+            c.values = read_vectors(model, budget(s.output, name), comps, c.path == AnimationPath::Rotation,
+                                    name + " output");
             for (const glm::vec4& v : c.values)
                 if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w))
                     invalid(name + ": output values must be finite");
