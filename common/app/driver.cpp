@@ -190,6 +190,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         flatten_options.time = float(frame / options.fps);
         if (extra && duration > 0.0f) flatten_options.time = std::fmod(flatten_options.time, duration);
         flatten_options.camera = options.camera;
+        flatten_options.max_triangles = options.max_triangles;
         flatten_options.aspect = float(options.render.width) / float(options.render.height);
         try {
             scene = flatten(asset, flatten_options, &dropped);

@@ -67,6 +67,8 @@ void add_shared_options(CLI::App& app, Options& o) {
         ->check(number_in(1, kMaxFrames));
     app.add_option("--fps", o.fps, "Frames per second (frame i is rendered at t = i / fps)")->capture_default_str()
         ->check(number_in(1e-3, 1e4));
+    app.add_option("--max-triangles", o.max_triangles, "Refuse scenes with more triangles per frame than this")
+        ->capture_default_str()->check(number_in(1, 4e9));
     // Accuracy knobs (docs/accuracy.md measures what each costs).
     add_enum(app, "--intersect", o.render.intersect,
              {{"moller", IntersectMethod::Moller}, {"watertight", IntersectMethod::Watertight}},

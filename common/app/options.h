@@ -28,6 +28,7 @@ struct Options {
     int camera = -1;
     int frames = 1;
     double fps = 24.0;
+    std::uint64_t max_triangles = kDefaultMaxTriangles;   // FlattenOptions::max_triangles
     RenderSettings render;
 };
 

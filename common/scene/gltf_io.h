@@ -1,24 +1,23 @@
 // Reading and writing glTF 2.0 (.gltf and .glb) through tinygltf.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 
 #include "scene.h"
 
 namespace rt {
 
-// Thrown for anything that makes a scene unusable: missing file, malformed JSON, bad accessor, unsupported content.
-// what() is one line meant for the user.
-struct SceneError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+// Errors are thrown as SceneError (scene.h), one line naming the file.
 
 // Loads the default scene of a glTF file (.gltf or .glb by extension). Reads: node hierarchy and TRS/matrix
 // transforms, TRIANGLES primitives (indexed or not; other modes are skipped with a warning), POSITION, NORMAL,
 // TEXCOORD_0, materials (baseColor factor/texture, metallic, roughness, emissive, KHR_materials_emissive_strength,
 // KHR_materials_transmission, KHR_materials_ior, KHR_materials_specular), cameras, KHR_lights_punctual and
 // animations (translation/rotation/scale channels). Warnings go to `warnings` when given.
+// Hostile input is refused before it can do harm (docs/shading.md, "Values from files" and "Limits"): JSON nested
+// deeper than 512 levels, malformed structure, unsupported extensionsRequired, numbers that do not fit a float, URIs
+// naming anything but a regular file (never opened, so a FIFO cannot block), oversized images. The scene file and
+// every buffer and image file read are listed in the result's input_files.
 SceneAsset load_gltf(const std::string& path, std::string* warnings = nullptr);
 
 // Writes an asset as glTF 2.0 (.gltf with embedded buffers and images, or .glb by extension), using the same

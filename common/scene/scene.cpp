@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -111,19 +110,46 @@ struct WorldNode {
     glm::mat4 world;
 };
 
+// Iterative (an explicit stack, not recursion), so a chain of nodes any number of levels deep cannot overflow the
+// call stack; children are pushed in reverse so they are visited in their listed order.
 std::vector<WorldNode> walk_hierarchy(const SceneAsset& asset, const std::vector<Node>& nodes) {
     std::vector<WorldNode> out;
     std::vector<bool> visited(nodes.size(), false);   // guards against cycles and shared children in a bad asset
-    std::function<void(int, const glm::mat4&)> visit = [&](int i, const glm::mat4& parent) {
-        if (i < 0 || std::size_t(i) >= nodes.size() || visited[std::size_t(i)]) return;
+    std::vector<WorldNode> pending;                   // (node, parent's world matrix) still to visit
+    for (auto root = asset.roots.rbegin(); root != asset.roots.rend(); ++root)
+        pending.push_back({*root, glm::mat4(1.0f)});
+    while (!pending.empty()) {
+        const auto [i, parent] = pending.back();
+        pending.pop_back();
+        if (i < 0 || std::size_t(i) >= nodes.size() || visited[std::size_t(i)]) continue;
         visited[std::size_t(i)] = true;
         const Node& node = nodes[std::size_t(i)];
         const glm::mat4 world = parent * node.local_transform();
         out.push_back({i, world});
-        for (int child : node.children) visit(child, world);
-    };
-    for (int root : asset.roots) visit(root, glm::mat4(1.0f));
+        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+            pending.push_back({*child, world});
+    }
     return out;
+}
+
+// Triangles a mesh contributes per instance (whole triangles only, as flatten reads them).
+std::uint64_t mesh_triangles(const Mesh& mesh) {
+    std::uint64_t n = 0;
+    for (const Primitive& p : mesh.primitives) n += (p.indices.empty() ? p.positions.size() : p.indices.size()) / 3;
+    return n;
+}
+
+// Triangles of the whole frame (instances x mesh triangles), counted before anything is allocated for them.
+std::uint64_t count_triangles(const SceneAsset& asset, const std::vector<Node>& nodes,
+                              const std::vector<WorldNode>& order) {
+    std::vector<std::uint64_t> per_mesh(asset.meshes.size());
+    for (std::size_t m = 0; m < asset.meshes.size(); ++m) per_mesh[m] = mesh_triangles(asset.meshes[m]);
+    std::uint64_t total = 0;
+    for (const WorldNode& wn : order) {
+        const int mesh = nodes[std::size_t(wn.index)].mesh;
+        if (mesh >= 0 && std::size_t(mesh) < per_mesh.size()) total += per_mesh[std::size_t(mesh)];
+    }
+    return total;
 }
 
 // Unit vector or the fallback when v is zero or not finite.
@@ -154,7 +180,7 @@ void place_camera(Camera& cam, const glm::mat4& world) {
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles) {
     Scene scene;
     scene.name = asset.name;
-    scene.background = asset.background;
+    scene.background = glm::clamp(asset.background, glm::vec3(0.0f), glm::vec3(kMaxRadiance));
     scene.materials = asset.materials;
     scene.textures = asset.textures;
     for (Material& m : scene.materials)
@@ -164,6 +190,15 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
 
     const std::vector<Node> nodes = animated_nodes(asset, options.time);
     const std::vector<WorldNode> order = walk_hierarchy(asset, nodes);
+    const std::uint64_t triangles = count_triangles(asset, nodes, order);
+    if (triangles > options.max_triangles)
+        throw SceneError("scene " + asset.name + " has " + std::to_string(triangles) +
+                         " triangles (instances x mesh triangles), more than the limit of " +
+                         std::to_string(options.max_triangles) + " (--max-triangles raises it)");
+    scene.positions.reserve(3 * triangles);
+    scene.normals.reserve(3 * triangles);
+    scene.uvs.reserve(3 * triangles);
+    scene.material_ids.reserve(triangles);
 
     const Camera* chosen_camera = nullptr;
     glm::mat4 camera_world(1.0f);
@@ -182,7 +217,8 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
             Light light = asset.lights[std::size_t(node.light)];
             light.position = glm::vec3(world[3]);
             light.direction = safe_normalize(-glm::vec3(world[2]), glm::vec3(0, 0, -1));
-            scene.lights.push_back(light);
+            // A light placed by transforms that overflow a float lights nothing (like a triangle there, dropped).
+            if (finite(light.position)) scene.lights.push_back(light);
         }
 
         if (node.mesh < 0 || std::size_t(node.mesh) >= asset.meshes.size()) continue;
@@ -253,6 +289,9 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     if (chosen_camera) {
         scene.camera = *chosen_camera;
         place_camera(scene.camera, camera_world);
+        if (!finite(scene.camera.position))
+            throw SceneError("scene " + asset.name +
+                             ": the camera's transforms overflow a float (its position is not finite)");
     } else if (options.camera >= 0) {
         throw std::out_of_range("the scene has no camera " + std::to_string(options.camera) + " on a node (it has " +
                                 std::to_string(asset.cameras.size()) + " cameras)");

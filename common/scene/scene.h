@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,12 @@
 #include <glm/gtc/quaternion.hpp>
 
 namespace rt {
+
+// Thrown for anything that makes a scene unusable: missing file, malformed JSON, bad accessor, unsupported content,
+// a scene beyond a limit. what() is one line meant for the user.
+struct SceneError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 // An axis-aligned box; empty until the first point is added.
 struct Bounds {
@@ -28,6 +35,11 @@ struct Bounds {
     glm::vec3 center() const { return 0.5f * (lo + hi); }
     float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }
 };
+
+// Largest irradiance a light delivers, emitted radiance and background radiance (docs/shading.md, "Limits"): far
+// above any real scene (the sun gives 1e5 lux, a 1e7 cd lamp 1 mm away 1e13), low enough that summing lights,
+// bounces and samples can never reach a float's 3.4e38. Clamped where the value is formed, so no pixel is infinite.
+constexpr float kMaxRadiance = 1e20f;
 
 // An 8-bit texture exactly as stored in the file: RGBA, sRGB-encoded for base colour. Sampling converts to linear.
 struct Texture {
@@ -142,7 +154,7 @@ struct SceneAsset {
     std::vector<Camera> cameras;        // projection parameters; placement comes from the node
     std::vector<Light> lights;          // colour/intensity/cone; placement comes from the node
     std::vector<Animation> animations;
-    glm::vec3 background{0.0f};         // linear radiance of rays that leave the scene
+    glm::vec3 background{0.0f};         // linear radiance of rays that leave the scene (at most kMaxRadiance)
     // Every file the loader read (the scene file, its buffers and images), as given; empty for built-in scenes.
     // The driver refuses an output path naming one of them.
     std::vector<std::string> input_files;
@@ -170,15 +182,21 @@ struct Scene {
     std::size_t triangle_count() const { return material_ids.size(); }
 };
 
+constexpr std::uint64_t kDefaultMaxTriangles = 20'000'000;
+
 struct FlattenOptions {
     float time = 0.0f;            // seconds, for animations (all animations play together, clamped to their ends)
     int camera = -1;              // glTF camera index; -1 = first camera in node order, else auto-framed
     float aspect = 4.0f / 3.0f;   // image width / height, used for auto-framing
     bool add_default_light = true;
+    // Refuse frames with more triangles than this (docs/shading.md, "Limits"): 20 million triangles are about 2 GB
+    // of flattened vertex data before any acceleration structure or GPU copy.
+    std::uint64_t max_triangles = kDefaultMaxTriangles;
 };
 
 // Evaluates the asset at a time and bakes everything into world space. Triangles whose vertices are not finite are
 // dropped (counted in dropped_triangles when given); degenerate triangles are kept (the intersectors must cope).
+// Throws SceneError, before allocating, when the frame has more than options.max_triangles triangles.
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles = nullptr);
 
 // The auto-framed camera and key light used when an asset has none (docs/shading.md, "Defaults").

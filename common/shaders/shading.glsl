@@ -11,6 +11,7 @@
 const float RT_AMBIENT = 0.03;
 const float RT_DEFAULT_CUTOFF = 1e-3;
 const float RT_PI = 3.14159265358979;
+const float RT_MAX_RADIANCE = 1e20;   // kMaxRadiance: largest irradiance of a light and emitted radiance
 
 // Mirror reflection of d about n (n unit length).
 vec3 reflect_dir(vec3 d, vec3 n) {
@@ -130,7 +131,7 @@ SurfaceCoefficients surface_coefficients(Material m, vec4 tex) {
     s.shininess = shininess;
     precise vec3 specular = s.smoothness * (metallic * s.base + s.dielectric * s.f0_dielectric);
     s.specular = specular;
-    s.emissive = m.emissive;
+    s.emissive = min(m.emissive, vec3(RT_MAX_RADIANCE));
     return s;
 }
 
@@ -139,7 +140,7 @@ SurfaceCoefficients surface_coefficients(Material m, vec4 tex) {
 vec3 light_incidence(Light light, vec3 p, vec3 n, out vec3 to_light, out float distance) {
     to_light = vec3(0.0);
     distance = 0.0;
-    precise float scale = light.intensity;
+    precise float scale = min(light.intensity, RT_MAX_RADIANCE);
     if (light.type == RT_LIGHT_DIRECTIONAL) {
         to_light = -rt_normalize(light.direction);
         distance = RT_INFINITY;
@@ -151,7 +152,7 @@ vec3 light_incidence(Light light, vec3 p, vec3 n, out vec3 to_light, out float d
         distance = dist;
         precise vec3 tl = vec3(d.x / dist, d.y / dist, d.z / dist);
         to_light = tl;
-        scale /= d2;
+        scale = min(scale / d2, RT_MAX_RADIANCE);
         if (light.range > 0.0) {
             // (Arguments of user functions are computed into precise locals first: `precise` does not reach
             // through a call, and the compiler may otherwise reassociate r * r * r * r.)

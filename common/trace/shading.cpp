@@ -62,13 +62,13 @@ SurfaceCoefficients surface_coefficients(const Material& m, const glm::vec4& tex
     const float alpha = std::max(roughness * roughness, 0.1f);   // floor keeps mirror highlights a few pixels wide
     s.shininess = 2.0f / (alpha * alpha) - 2.0f;
     s.specular = s.smoothness * (metallic * s.base + s.dielectric * s.f0_dielectric);
-    s.emissive = m.emissive;
+    s.emissive = glm::min(m.emissive, glm::vec3(kMaxRadiance));
     return s;
 }
 
 glm::vec3 light_incidence(const Light& light, const glm::vec3& p, const glm::vec3& n, glm::vec3& to_light,
                           float& distance) {
-    float scale = light.intensity;
+    float scale = std::min(light.intensity, kMaxRadiance);
     if (light.type == LightType::Directional) {
         to_light = -glm::normalize(light.direction);
         distance = std::numeric_limits<float>::infinity();
@@ -78,7 +78,7 @@ glm::vec3 light_incidence(const Light& light, const glm::vec3& p, const glm::vec
         if (!(d2 > 0.0f)) return glm::vec3(0.0f);
         distance = std::sqrt(d2);
         to_light = d / distance;
-        scale /= d2;                                       // inverse-square law
+        scale = std::min(scale / d2, kMaxRadiance);        // inverse-square law; d2 may be tiny
         if (light.range > 0.0f) {
             // glTF's recommended smooth window: clamp(1 - (d/range)^4, 0, 1)^2.
             const float r = distance / light.range;

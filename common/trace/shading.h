@@ -16,6 +16,7 @@ enum class FresnelMode : int { Schlick = 0, Exact = 1 };
 constexpr float kAmbient = 0.03f;          // ambient light, as a fraction of the diffuse colour
 constexpr float kDefaultCutoff = 1e-3f;    // a path stops when its weight falls below this in every channel
 constexpr float kPi = 3.14159265358979f;
+// kMaxRadiance (scene.h) bounds the irradiance light_incidence returns and the emission surface_coefficients returns.
 
 // Mirror reflection of d about n (n unit length).
 template <class T> Vec3<T> reflect_dir(const Vec3<T>& d, const Vec3<T>& n) { return d - T(2) * glm::dot(d, n) * n; }

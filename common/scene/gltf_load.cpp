@@ -1,51 +1,28 @@
-// glTF 2.0 import and export through tinygltf. Everything read from a file is validated before use (accessor ranges,
-// indices, references between objects), so a malformed file gives a SceneError, never a crash.
+// glTF 2.0 import through tinygltf. Everything read from a file is validated before use (accessor ranges, indices,
+// references between objects), so a malformed file gives a SceneError, never a crash.
 #include "gltf_io.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
-#include <map>
+#include <string_view>
 #include <system_error>
 
 #include <tiny_gltf.h>
+
+#include "gltf_common.h"
+#include "gltf_files.h"
+#include "gltf_validate.h"
 
 namespace rt {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lower_extension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
-// tinygltf reports several lines; the user gets one.
-std::string one_line(const std::string& text) {
-    std::string out;
-    bool pending_separator = false;
-    for (char c : text) {
-        if (c == '\n' || c == '\r') {
-            pending_separator = !out.empty();
-            continue;
-        }
-        if (pending_separator) { out += "; "; pending_separator = false; }
-        out += c;
-    }
-    while (!out.empty() && std::isspace(static_cast<unsigned char>(out.back()))) out.pop_back();
-    return out.empty() ? "unknown error" : out;
-}
-
-// Thrown inside the loader; load_gltf adds the file name.
-struct Invalid {
-    std::string reason;
-};
-[[noreturn]] void invalid(const std::string& reason) { throw Invalid{reason}; }
+using namespace gltf_detail;
 
 // ---------------------------------------------------------------------------------------------------------------
 // Reading tinygltf's generic JSON values (extensions).
@@ -60,27 +37,31 @@ const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const std::s
     return it == map.end() ? nullptr : &it->second;
 }
 
-float number(const tinygltf::Value* object, const std::string& key, float fallback) {
+double number(const tinygltf::Value* object, const std::string& key, double fallback) {
     if (!object) return fallback;
     const tinygltf::Value* v = member(*object, key);
-    return v && v->IsNumber() ? float(v->GetNumberAsDouble()) : fallback;
+    return v && v->IsNumber() ? v->GetNumberAsDouble() : fallback;
 }
 
-glm::vec3 vec3(const tinygltf::Value* object, const std::string& key, glm::vec3 fallback) {
+// An array of numbers, or the fallback when it is missing or not all numbers.
+std::vector<double> numbers(const tinygltf::Value* object, const std::string& key, std::vector<double> fallback) {
     if (!object) return fallback;
     const tinygltf::Value* v = member(*object, key);
-    if (!v || !v->IsArray() || v->ArrayLen() != 3) return fallback;
-    glm::vec3 out;
-    for (int i = 0; i < 3; ++i) {
+    if (!v || !v->IsArray()) return fallback;
+    std::vector<double> out;
+    for (int i = 0; i < int(v->ArrayLen()); ++i) {
         const tinygltf::Value& e = v->Get(i);
         if (!e.IsNumber()) return fallback;
-        out[i] = float(e.GetNumberAsDouble());
+        out.push_back(e.GetNumberAsDouble());
     }
     return out;
 }
 
-glm::vec3 vec3(const std::vector<double>& v, glm::vec3 fallback) {
-    return v.size() == 3 ? glm::vec3(float(v[0]), float(v[1]), float(v[2])) : fallback;
+// A number for a message: short, never 309 digits.
+std::string describe(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v);
+    return text;
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -208,11 +189,54 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
 // ---------------------------------------------------------------------------------------------------------------
 // Loading.
 
+// Accessor elements the loader copies out of a file in all. Several primitives may share one accessor, so the
+// copies are not bounded by the file's size; 2^28 elements (about 3 GiB as vec3) allow a 20-million-triangle mesh
+// with normals and texture coordinates, unindexed (docs/shading.md, "Limits").
+constexpr std::uint64_t kMaxLoadedElements = std::uint64_t(1) << 28;
+
 struct Loader {
     const tinygltf::Model& model;
     std::string warnings;
+    std::uint64_t loaded_elements = 0;
+
+    // Counts an accessor's elements against kMaxLoadedElements before they are copied (a bad index is left for
+    // view_accessor to report).
+    int budget(int accessor, const std::string& what) {
+        if (accessor < 0 || std::size_t(accessor) >= model.accessors.size()) return accessor;
+        loaded_elements += model.accessors[std::size_t(accessor)].count;
+        if (loaded_elements > kMaxLoadedElements)
+            invalid(what + ": the file's accessors add up to more than " + std::to_string(kMaxLoadedElements) +
+                    " elements");
+        return accessor;
+    }
 
     void warn(const std::string& message) { warnings += message + "\n"; }
+
+    // Numbers from the file (docs/shading.md, "Values from files"): one that does not fit a float (NaN, infinite,
+    // beyond 3.4e38) is refused; one outside [lo, hi] (glTF's range for it) is clamped with a warning.
+    float value(double v, const std::string& what, float lo = -std::numeric_limits<float>::max(),
+                float hi = std::numeric_limits<float>::max()) {
+        if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max()))
+            invalid(what + " is " + describe(v) + ", which does not fit a float");
+        const float f = float(v);
+        if (f >= lo && f <= hi) return f;
+        const float clamped = std::clamp(f, lo, hi);
+        warn(what + " " + describe(v) + " is outside [" + describe(lo) + ", " + describe(hi) + "]; clamped to " +
+             describe(clamped));
+        return clamped;
+    }
+
+    // Exactly n numbers through value(), or the fallback when the file gives none.
+    template <int N>
+    glm::vec<N, float> values(const std::vector<double>& v, const std::string& what, glm::vec<N, float> fallback,
+                              float lo = -std::numeric_limits<float>::max(),
+                              float hi = std::numeric_limits<float>::max()) {
+        if (v.empty()) return fallback;
+        if (v.size() != std::size_t(N)) invalid(what + " must have " + std::to_string(N) + " numbers");
+        glm::vec<N, float> out;
+        for (int i = 0; i < N; ++i) out[i] = value(v[std::size_t(i)], what, lo, hi);
+        return out;
+    }
 
     void check_index(int i, std::size_t size, const std::string& what) const {
         if (i < -1 || (i >= 0 && std::size_t(i) >= size))
@@ -229,22 +253,22 @@ struct Loader {
         };
         const int position = attribute("POSITION");
         if (position < 0) invalid(name + ": no POSITION attribute");
-        for (const glm::vec4& v : read_vectors(model, position, 3, false, name + " POSITION"))
+        for (const glm::vec4& v : read_vectors(model, budget(position, name), 3, false, name + " POSITION"))
             out.positions.push_back(glm::vec3(v));
         const std::size_t nv = out.positions.size();
 
         if (const int normal = attribute("NORMAL"); normal >= 0) {
-            for (const glm::vec4& v : read_vectors(model, normal, 3, false, name + " NORMAL"))
+            for (const glm::vec4& v : read_vectors(model, budget(normal, name), 3, false, name + " NORMAL"))
                 out.normals.push_back(glm::vec3(v));
             if (out.normals.size() != nv) invalid(name + ": NORMAL and POSITION counts differ");
         }
         if (const int uv = attribute("TEXCOORD_0"); uv >= 0) {
-            for (const glm::vec4& v : read_vectors(model, uv, 2, true, name + " TEXCOORD_0"))
+            for (const glm::vec4& v : read_vectors(model, budget(uv, name), 2, true, name + " TEXCOORD_0"))
                 out.uvs.push_back(glm::vec2(v));
             if (out.uvs.size() != nv) invalid(name + ": TEXCOORD_0 and POSITION counts differ");
         }
         if (p.indices >= 0) {
-            out.indices = read_indices(model, p.indices, name + " indices");
+            out.indices = read_indices(model, budget(p.indices, name), name + " indices");
             for (std::uint32_t i : out.indices)
                 if (i >= nv)
                     invalid(name + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) +
@@ -279,12 +303,10 @@ struct Loader {
         Material out;
         out.name = m.name;
         const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() == 4)
-            out.base_color = glm::vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
-                                       float(pbr.baseColorFactor[2]), float(pbr.baseColorFactor[3]));
-        out.metallic = float(pbr.metallicFactor);
-        out.roughness = float(pbr.roughnessFactor);
         const std::string name = "material " + std::to_string(index);
+        out.base_color = values<4>(pbr.baseColorFactor, name + ": baseColorFactor", glm::vec4(1.0f), 0.0f, 1.0f);
+        out.metallic = value(pbr.metallicFactor, name + ": metallicFactor", 0.0f, 1.0f);
+        out.roughness = value(pbr.roughnessFactor, name + ": roughnessFactor", 0.0f, 1.0f);
         if (pbr.baseColorTexture.index >= 0) {
             check_index(pbr.baseColorTexture.index, model.textures.size(), name + ": texture");
             if (pbr.baseColorTexture.texCoord != 0)
@@ -293,14 +315,19 @@ struct Loader {
             else
                 out.base_color_texture = pbr.baseColorTexture.index;
         }
-        out.emissive = vec3(m.emissiveFactor, glm::vec3(0.0f)) *
-                       number(extension(m.extensions, "KHR_materials_emissive_strength"), "emissiveStrength", 1.0f);
+        const float strength = value(number(extension(m.extensions, "KHR_materials_emissive_strength"),
+                                            "emissiveStrength", 1.0),
+                                     name + ": emissiveStrength", 0.0f);
+        // factor <= 1, so the product fits a float too
+        out.emissive = values<3>(m.emissiveFactor, name + ": emissiveFactor", glm::vec3(0.0f), 0.0f, 1.0f) * strength;
         out.transmission =
-            number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0f);
-        out.ior = number(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5f);
+            value(number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0),
+                  name + ": transmissionFactor", 0.0f, 1.0f);
+        out.ior = value(number(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5), name + ": ior", 1.0f);
         const tinygltf::Value* specular = extension(m.extensions, "KHR_materials_specular");
-        out.specular = number(specular, "specularFactor", 1.0f);
-        out.specular_color = vec3(specular, "specularColorFactor", glm::vec3(1.0f));
+        out.specular = value(number(specular, "specularFactor", 1.0), name + ": specularFactor", 0.0f, 1.0f);
+        out.specular_color = values<3>(numbers(specular, "specularColorFactor", {}), name + ": specularColorFactor",
+                                       glm::vec3(1.0f), 0.0f);
         return out;
     }
 
@@ -357,18 +384,18 @@ struct Loader {
         const std::string name = "camera " + std::to_string(index);
         if (c.type == "orthographic") {
             out.projection = Projection::Orthographic;
-            out.xmag = float(c.orthographic.xmag);
-            out.ymag = float(c.orthographic.ymag);
-            out.znear = float(c.orthographic.znear);
-            out.zfar = float(c.orthographic.zfar);
+            out.xmag = value(c.orthographic.xmag, name + ": xmag");
+            out.ymag = value(c.orthographic.ymag, name + ": ymag");
+            out.znear = value(c.orthographic.znear, name + ": znear");
+            out.zfar = value(c.orthographic.zfar, name + ": zfar");
             if (!(out.xmag != 0.0f && out.ymag != 0.0f && std::isfinite(out.xmag) && std::isfinite(out.ymag)))
                 invalid(name + ": invalid xmag/ymag");
         } else if (c.type == "perspective") {
             out.projection = Projection::Perspective;
-            out.yfov = float(c.perspective.yfov);
-            out.aspect = float(c.perspective.aspectRatio);
-            out.znear = float(c.perspective.znear);
-            out.zfar = float(c.perspective.zfar);
+            out.yfov = value(c.perspective.yfov, name + ": yfov");
+            out.aspect = value(c.perspective.aspectRatio, name + ": aspectRatio");
+            out.znear = value(c.perspective.znear, name + ": znear");
+            out.zfar = value(c.perspective.zfar, name + ": zfar");
             if (!(out.yfov > 0.0f && out.yfov < 3.14159f)) invalid(name + ": invalid yfov");
             if (!(out.aspect >= 0.0f) || !std::isfinite(out.aspect)) out.aspect = 0.0f;
         } else {
@@ -388,11 +415,13 @@ struct Loader {
             out.intensity = 0.0f;
             return out;
         }
-        out.color = vec3(l.color, glm::vec3(1.0f));
-        out.intensity = float(l.intensity);
-        out.range = float(l.range);
-        out.inner_cone = float(l.spot.innerConeAngle);
-        out.outer_cone = float(l.spot.outerConeAngle);
+        const std::string name = "light " + std::to_string(index);
+        out.color = values<3>(l.color, name + ": color", glm::vec3(1.0f), 0.0f, 1.0f);
+        out.intensity = value(l.intensity, name + ": intensity", 0.0f);
+        out.range = value(l.range, name + ": range", 0.0f);
+        const float quarter_turn = 1.5707964f;
+        out.inner_cone = value(l.spot.innerConeAngle, name + ": innerConeAngle", 0.0f, quarter_turn);
+        out.outer_cone = value(l.spot.outerConeAngle, name + ": outerConeAngle", 0.0f, quarter_turn);
         return out;
     }
 
@@ -403,14 +432,17 @@ struct Loader {
         if (n.matrix.size() == 16) {
             glm::mat4 m;
             for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r) m[c][r] = float(n.matrix[std::size_t(4 * c + r)]);   // column-major
+                for (int r = 0; r < 4; ++r)   // column-major
+                    m[c][r] = value(n.matrix[std::size_t(4 * c + r)], name + ": matrix");
             out.matrix = m;
         } else {
-            if (n.translation.size() == 3) out.translation = vec3(n.translation, glm::vec3(0.0f));
-            if (n.scale.size() == 3) out.scale = vec3(n.scale, glm::vec3(1.0f));
+            out.translation = values<3>(n.translation, name + ": translation", glm::vec3(0.0f));
+            out.scale = values<3>(n.scale, name + ": scale", glm::vec3(1.0f));
             if (n.rotation.size() == 4)   // glTF stores x, y, z, w
-                out.rotation = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
-                                         float(n.rotation[2]));
+                out.rotation = glm::quat(value(n.rotation[3], name + ": rotation"),
+                                         value(n.rotation[0], name + ": rotation"),
+                                         value(n.rotation[1], name + ": rotation"),
+                                         value(n.rotation[2], name + ": rotation"));
         }
         check_index(n.mesh, model.meshes.size(), name + ": mesh");
         check_index(n.camera, model.cameras.size(), name + ": camera");
@@ -460,12 +492,17 @@ struct Loader {
             else if (s.interpolation == "LINEAR" || s.interpolation.empty()) c.interpolation = Interpolation::Linear;
             else invalid(name + ": unknown interpolation '" + s.interpolation + "'");
 
-            for (const glm::vec4& t : read_vectors(model, s.input, 1, false, name + " input")) c.times.push_back(t.x);
+            for (const glm::vec4& t : read_vectors(model, budget(s.input, name), 1, false, name + " input"))
+                c.times.push_back(t.x);
             for (std::size_t k = 0; k < c.times.size(); ++k)
                 if (!std::isfinite(c.times[k]) || (k > 0 && c.times[k] < c.times[k - 1]))
                     invalid(name + ": key times must be finite and increasing");
             const int comps = c.path == AnimationPath::Rotation ? 4 : 3;
-            c.values = read_vectors(model, s.output, comps, c.path == AnimationPath::Rotation, name + " output");
+            c.values = read_vectors(model, budget(s.output, name), comps, c.path == AnimationPath::Rotation,
+                                    name + " output");
+            for (const glm::vec4& v : c.values)
+                if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w))
+                    invalid(name + ": output values must be finite");
             const std::size_t per_key = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
             if (c.values.size() != per_key * c.times.size()) invalid(name + ": input and output counts do not match");
             if (c.times.empty()) continue;
@@ -504,7 +541,8 @@ struct Loader {
             }
             // Our own extra: the background colour (written by save_gltf).
             if (const tinygltf::Value* bg = member(scene.extras, "rt_background"); bg && bg->IsArray())
-                out.background = vec3(&scene.extras, "rt_background", glm::vec3(0.0f));
+                out.background = values<3>(numbers(&scene.extras, "rt_background", {}), "rt_background",
+                                           glm::vec3(0.0f), 0.0f, kMaxRadiance);
         } else {
             for (std::size_t i = 0; i < out.nodes.size(); ++i)
                 if (parents[i] == 0) out.roots.push_back(int(i));
@@ -517,259 +555,6 @@ struct Loader {
     }
 };
 
-// ---------------------------------------------------------------------------------------------------------------
-// Saving.
-
-struct Writer {
-    tinygltf::Model model;
-    std::vector<std::string> extensions;
-
-    void use_extension(const std::string& name) {
-        if (std::find(extensions.begin(), extensions.end(), name) == extensions.end()) extensions.push_back(name);
-    }
-
-    // Appends raw bytes to buffer 0 (4-byte aligned) as a new buffer view; returns its index.
-    int add_view(const void* bytes, std::size_t size, int target) {
-        std::vector<unsigned char>& data = model.buffers[0].data;
-        while (data.size() % 4) data.push_back(0);
-        tinygltf::BufferView view;
-        view.buffer = 0;
-        view.byteOffset = data.size();
-        view.byteLength = size;
-        view.target = target;
-        const auto* p = static_cast<const unsigned char*>(bytes);
-        data.insert(data.end(), p, p + size);
-        model.bufferViews.push_back(view);
-        return int(model.bufferViews.size() - 1);
-    }
-
-    // A tightly packed float accessor of `comps` components per element, with min/max.
-    int add_floats(const float* values, std::size_t count, int comps, int type, int target) {
-        tinygltf::Accessor a;
-        a.bufferView = add_view(values, count * std::size_t(comps) * sizeof(float), target);
-        a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-        a.count = count;
-        a.type = type;
-        a.minValues.assign(std::size_t(comps), std::numeric_limits<double>::infinity());
-        a.maxValues.assign(std::size_t(comps), -std::numeric_limits<double>::infinity());
-        for (std::size_t i = 0; i < count; ++i)
-            for (std::size_t j = 0; j < std::size_t(comps); ++j) {
-                a.minValues[j] = std::min(a.minValues[j], double(values[i * std::size_t(comps) + j]));
-                a.maxValues[j] = std::max(a.maxValues[j], double(values[i * std::size_t(comps) + j]));
-            }
-        model.accessors.push_back(a);
-        return int(model.accessors.size() - 1);
-    }
-
-    int add_indices(const std::vector<std::uint32_t>& indices) {
-        tinygltf::Accessor a;
-        a.bufferView = add_view(indices.data(), indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-        a.count = indices.size();
-        a.type = TINYGLTF_TYPE_SCALAR;
-        model.accessors.push_back(a);
-        return int(model.accessors.size() - 1);
-    }
-
-    tinygltf::Mesh mesh(const Mesh& m) {
-        tinygltf::Mesh out;
-        out.name = m.name;
-        for (const Primitive& p : m.primitives) {
-            if (p.positions.empty()) continue;   // an accessor may not be empty (glTF 2.0, 5.1.2)
-            tinygltf::Primitive prim;
-            prim.mode = TINYGLTF_MODE_TRIANGLES;
-            prim.material = p.material >= 0 && std::size_t(p.material) < model.materials.size() ? p.material : -1;
-            prim.attributes["POSITION"] = add_floats(&p.positions[0].x, p.positions.size(), 3, TINYGLTF_TYPE_VEC3,
-                                                     TINYGLTF_TARGET_ARRAY_BUFFER);
-            if (p.normals.size() == p.positions.size())
-                prim.attributes["NORMAL"] = add_floats(&p.normals[0].x, p.normals.size(), 3, TINYGLTF_TYPE_VEC3,
-                                                       TINYGLTF_TARGET_ARRAY_BUFFER);
-            if (p.uvs.size() == p.positions.size())
-                prim.attributes["TEXCOORD_0"] =
-                    add_floats(&p.uvs[0].x, p.uvs.size(), 2, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
-            if (!p.indices.empty()) prim.indices = add_indices(p.indices);
-            out.primitives.push_back(prim);
-        }
-        return out;
-    }
-
-    tinygltf::Material material(const Material& m) {
-        tinygltf::Material out;
-        out.name = m.name;
-        out.pbrMetallicRoughness.baseColorFactor = {m.base_color.r, m.base_color.g, m.base_color.b, m.base_color.a};
-        out.pbrMetallicRoughness.metallicFactor = m.metallic;
-        out.pbrMetallicRoughness.roughnessFactor = m.roughness;
-        if (m.base_color_texture >= 0) out.pbrMetallicRoughness.baseColorTexture.index = m.base_color_texture;
-        // emissiveFactor is limited to [0, 1]; larger values go through KHR_materials_emissive_strength.
-        const float strength = std::max({m.emissive.r, m.emissive.g, m.emissive.b});
-        if (strength > 1.0f) {
-            const glm::vec3 e = m.emissive / strength;
-            out.emissiveFactor = {e.r, e.g, e.b};
-            out.extensions["KHR_materials_emissive_strength"] =
-                object({{"emissiveStrength", tinygltf::Value(double(strength))}});
-            use_extension("KHR_materials_emissive_strength");
-        } else {
-            out.emissiveFactor = {m.emissive.r, m.emissive.g, m.emissive.b};
-        }
-        if (m.transmission != 0.0f) {
-            out.extensions["KHR_materials_transmission"] =
-                object({{"transmissionFactor", tinygltf::Value(double(m.transmission))}});
-            use_extension("KHR_materials_transmission");
-        }
-        if (m.ior != 1.5f) {
-            out.extensions["KHR_materials_ior"] = object({{"ior", tinygltf::Value(double(m.ior))}});
-            use_extension("KHR_materials_ior");
-        }
-        if (m.specular != 1.0f || m.specular_color != glm::vec3(1.0f)) {
-            tinygltf::Value::Array color{tinygltf::Value(double(m.specular_color.r)),
-                                         tinygltf::Value(double(m.specular_color.g)),
-                                         tinygltf::Value(double(m.specular_color.b))};
-            out.extensions["KHR_materials_specular"] = object({{"specularFactor", tinygltf::Value(double(m.specular))},
-                                                               {"specularColorFactor", tinygltf::Value(color)}});
-            use_extension("KHR_materials_specular");
-        }
-        return out;
-    }
-
-    static tinygltf::Value object(std::initializer_list<std::pair<const std::string, tinygltf::Value>> members) {
-        return tinygltf::Value(tinygltf::Value::Object(members));
-    }
-
-    void texture(const Texture& t, std::size_t index) {
-        if (t.width <= 0 || t.height <= 0 || t.rgba8.size() != std::size_t(t.width) * std::size_t(t.height) * 4)
-            invalid("texture " + std::to_string(index) + " has inconsistent size and pixel data");
-        tinygltf::Image img;
-        img.width = t.width;
-        img.height = t.height;
-        img.component = 4;
-        img.bits = 8;
-        img.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-        img.image = t.rgba8;
-        img.mimeType = "image/png";   // tinygltf encodes it as an embedded PNG data URI
-        model.images.push_back(img);
-        tinygltf::Sampler s;
-        s.magFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
-        s.minFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
-        model.samplers.push_back(s);
-        tinygltf::Texture tex;
-        tex.name = t.name;
-        tex.source = int(model.images.size() - 1);
-        tex.sampler = int(model.samplers.size() - 1);
-        model.textures.push_back(tex);
-    }
-
-    static tinygltf::Camera camera(const Camera& c) {
-        tinygltf::Camera out;
-        out.name = c.name;
-        if (c.projection == Projection::Orthographic) {
-            out.type = "orthographic";
-            out.orthographic.xmag = c.xmag;
-            out.orthographic.ymag = c.ymag;
-            out.orthographic.znear = c.znear;
-            out.orthographic.zfar = c.zfar;
-        } else {
-            out.type = "perspective";
-            out.perspective.yfov = c.yfov;
-            out.perspective.aspectRatio = c.aspect;
-            out.perspective.znear = c.znear;
-            out.perspective.zfar = c.zfar;
-        }
-        return out;
-    }
-
-    static tinygltf::Light light(const Light& l) {
-        tinygltf::Light out;
-        out.name = l.name;
-        out.type = l.type == LightType::Spot ? "spot" : l.type == LightType::Directional ? "directional" : "point";
-        out.color = {l.color.r, l.color.g, l.color.b};
-        out.intensity = l.intensity;
-        out.range = l.range;
-        out.spot.innerConeAngle = l.inner_cone;
-        out.spot.outerConeAngle = l.outer_cone;
-        return out;
-    }
-
-    tinygltf::Node node(const Node& n, std::size_t node_count) {
-        tinygltf::Node out;
-        out.name = n.name;
-        if (n.matrix) {
-            for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r) out.matrix.push_back((*n.matrix)[c][r]);
-        } else {
-            if (n.translation != glm::vec3(0.0f)) out.translation = {n.translation.x, n.translation.y, n.translation.z};
-            if (n.rotation != glm::quat(1, 0, 0, 0))
-                out.rotation = {n.rotation.x, n.rotation.y, n.rotation.z, n.rotation.w};
-            if (n.scale != glm::vec3(1.0f)) out.scale = {n.scale.x, n.scale.y, n.scale.z};
-        }
-        out.mesh = n.mesh >= 0 && std::size_t(n.mesh) < model.meshes.size() ? n.mesh : -1;
-        out.camera = n.camera >= 0 && std::size_t(n.camera) < model.cameras.size() ? n.camera : -1;
-        if (n.light >= 0 && std::size_t(n.light) < model.lights.size())
-            out.extensions["KHR_lights_punctual"] = object({{"light", tinygltf::Value(n.light)}});
-        for (int child : n.children)
-            if (child >= 0 && std::size_t(child) < node_count) out.children.push_back(child);
-        return out;
-    }
-
-    tinygltf::Animation animation(const Animation& a, std::size_t node_count) {
-        tinygltf::Animation out;
-        out.name = a.name;
-        for (const AnimationChannel& c : a.channels) {
-            const std::size_t per_key = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
-            if (c.times.empty() || c.values.size() != per_key * c.times.size()) continue;
-            if (c.node < 0 || std::size_t(c.node) >= node_count) continue;
-            tinygltf::AnimationSampler s;
-            s.input = add_floats(c.times.data(), c.times.size(), 1, TINYGLTF_TYPE_SCALAR, 0);
-            const bool rotation = c.path == AnimationPath::Rotation;
-            std::vector<float> values;
-            for (const glm::vec4& v : c.values)
-                for (int j = 0; j < (rotation ? 4 : 3); ++j) values.push_back(v[j]);
-            s.output = add_floats(values.data(), c.values.size(), rotation ? 4 : 3,
-                                  rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, 0);
-            s.interpolation = c.interpolation == Interpolation::Step          ? "STEP"
-                              : c.interpolation == Interpolation::CubicSpline ? "CUBICSPLINE"
-                                                                              : "LINEAR";
-            out.samplers.push_back(s);
-            tinygltf::AnimationChannel ch;
-            ch.sampler = int(out.samplers.size() - 1);
-            ch.target_node = c.node;
-            ch.target_path = c.path == AnimationPath::Translation ? "translation" : rotation ? "rotation" : "scale";
-            out.channels.push_back(ch);
-        }
-        return out;
-    }
-
-    void build(const SceneAsset& asset) {
-        model.asset.version = "2.0";
-        model.asset.generator = "raytracing-course rt_scene";
-        model.buffers.emplace_back();
-        for (const Material& m : asset.materials) model.materials.push_back(material(m));
-        for (std::size_t i = 0; i < asset.textures.size(); ++i) texture(asset.textures[i], i);
-        for (tinygltf::Material& m : model.materials)
-            if (m.pbrMetallicRoughness.baseColorTexture.index >= int(model.textures.size()))
-                m.pbrMetallicRoughness.baseColorTexture.index = -1;
-        for (const Mesh& m : asset.meshes) model.meshes.push_back(mesh(m));
-        for (const Camera& c : asset.cameras) model.cameras.push_back(camera(c));
-        for (const Light& l : asset.lights) model.lights.push_back(light(l));
-        for (const Node& n : asset.nodes) model.nodes.push_back(node(n, asset.nodes.size()));
-        for (const Animation& a : asset.animations) {
-            tinygltf::Animation anim = animation(a, asset.nodes.size());
-            if (!anim.channels.empty()) model.animations.push_back(std::move(anim));
-        }
-        tinygltf::Scene scene;
-        scene.name = asset.name;
-        for (int root : asset.roots)
-            if (root >= 0 && std::size_t(root) < asset.nodes.size()) scene.nodes.push_back(root);
-        scene.extras = object({{"rt_background", tinygltf::Value(tinygltf::Value::Array{
-                                                     tinygltf::Value(double(asset.background.r)),
-                                                     tinygltf::Value(double(asset.background.g)),
-                                                     tinygltf::Value(double(asset.background.b))})}});
-        model.scenes.push_back(scene);
-        model.defaultScene = 0;
-        if (model.buffers[0].data.empty()) model.buffers.clear();
-        model.extensionsUsed = extensions;   // tinygltf adds KHR_lights_punctual itself when there are lights
-    }
-};
-
 }  // namespace
 
 SceneAsset load_gltf(const std::string& path, std::string* warnings) {
@@ -777,19 +562,38 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
     const std::string ext = lower_extension(path);
     if (ext != ".gltf" && ext != ".glb")
         throw SceneError(prefix + "unknown extension '" + ext + "' (expected .gltf or .glb)");
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw SceneError(prefix + "no such file");
+    const bool binary = ext == ".glb";
 
+    // The file itself, then checks on its JSON before tinygltf parses it.
+    std::vector<unsigned char> bytes;
+    if (const std::string problem = read_regular_file(path, bytes); !problem.empty())
+        throw SceneError(prefix + problem);
+    try {
+        const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        const std::string_view json = binary ? glb_json_chunk(bytes) : text;
+        check_json_depth(json);
+        validate_gltf_json(json);
+    } catch (const Invalid& e) {
+        throw SceneError(prefix + one_line(e.reason));
+    }
+
+    // Buffers and images by URI: regular files only, each recorded.
+    FileReads reads;
     tinygltf::TinyGLTF gltf;
+    gltf.SetFsCallbacks(regular_file_callbacks(reads));
+    gltf.SetImageLoader(load_image_within_limits, &reads);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
+    const std::string base_dir = fs::path(path).parent_path().string();
     try {
-        ok = ext == ".glb" ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
-                           : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
+        ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir)
+                    : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                               unsigned(bytes.size()), base_dir);
     } catch (const std::exception& e) {   // the JSON parser may throw on some inputs
         throw SceneError(prefix + one_line(e.what()));
     }
+    if (!reads.error.empty()) throw SceneError(prefix + reads.error);
     if (!ok) throw SceneError(prefix + one_line(err.empty() ? warn : err));
 
     Loader loader{model, {}};
@@ -801,49 +605,10 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
         throw SceneError(prefix + one_line(e.reason));
     }
     asset.name = fs::path(path).stem().string();
-    asset.input_files.insert(asset.input_files.begin(), path);
+    asset.input_files = {path};
+    asset.input_files.insert(asset.input_files.end(), reads.files.begin(), reads.files.end());
     if (warnings) *warnings += loader.warnings;
     return asset;
-}
-
-void save_gltf(const SceneAsset& asset, const std::string& path) {
-    const std::string prefix = "cannot save scene " + path + ": ";
-    const std::string ext = lower_extension(path);
-    if (ext != ".gltf" && ext != ".glb")
-        throw SceneError(prefix + "unknown extension '" + ext + "' (expected .gltf or .glb)");
-
-    Writer writer;
-    try {
-        writer.build(asset);
-    } catch (const Invalid& e) {
-        throw SceneError(prefix + one_line(e.reason));
-    }
-
-    // Write next to the destination, then rename: the destination is either the old file or the complete new one.
-    const fs::path target(path);
-    const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".tmp");
-    tinygltf::TinyGLTF gltf;
-    const bool binary = ext == ".glb";
-    bool ok = false;
-    try {
-        ok = gltf.WriteGltfSceneToFile(&writer.model, temp.string(), /*embedImages=*/true, /*embedBuffers=*/true,
-                                       /*prettyPrint=*/true, binary);
-    } catch (const std::exception& e) {
-        std::error_code ec;
-        fs::remove(temp, ec);
-        throw SceneError(prefix + one_line(e.what()));
-    }
-    std::error_code ec;
-    if (!ok || !fs::is_regular_file(temp, ec) || fs::file_size(temp, ec) == 0) {
-        fs::remove(temp, ec);
-        throw SceneError(prefix + "writing failed");
-    }
-    fs::rename(temp, target, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(temp, ignored);
-        throw SceneError(prefix + ec.message());
-    }
 }
 
 }  // namespace rt

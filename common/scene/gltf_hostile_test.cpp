@@ -1,0 +1,301 @@
+// Hostile glTF input (issue 7), one test per class: crashes and hangs (deep hierarchies, deep JSON, URIs naming
+// things that are not files), the triangle budget, malformed glTF that tinygltf alone accepts, and values that do
+// not fit a float. Every refusal is a one-line SceneError naming the file.
+#include "gltf_io.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+namespace rt {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+class GltfHostile : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / ("rt_hostile_" + std::string(info->name()) + "_" +
+                                            std::to_string(std::random_device{}()));
+        fs::create_directories(dir_);
+        // The triangle's buffer: three float positions, kept in a file so URIs can be pointed elsewhere.
+        const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        std::ofstream(file("tri.bin"), std::ios::binary).write(reinterpret_cast<const char*>(positions), 36);
+    }
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(dir_, ec);
+    }
+
+    std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+    // A valid one-triangle scene whose buffer is tri.bin.
+    static json triangle() {
+        return json::parse(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+            "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+            "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+            "bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"uri":"tri.bin","byteLength":36}]})");
+    }
+
+    std::string write(const std::string& text, const std::string& name = "scene.gltf") const {
+        std::ofstream(file(name), std::ios::binary) << text;
+        return file(name);
+    }
+    std::string write(const json& doc) const { return write(doc.dump()); }
+
+    // Loads and expects a one-line SceneError naming the file and containing `expected`.
+    void expect_refused(const std::string& path, const std::string& expected) const {
+        try {
+            load_gltf(path);
+            ADD_FAILURE() << "accepted; expected an error containing '" << expected << "'";
+        } catch (const SceneError& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(path), std::string::npos) << message;
+            EXPECT_NE(message.find(expected), std::string::npos) << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+            EXPECT_LT(message.size(), 400u) << message;
+        }
+    }
+    void expect_refused(const json& doc, const std::string& expected) const { expect_refused(write(doc), expected); }
+
+    fs::path dir_;
+};
+
+// ---------------------------------------------------------------------------------------------------------------
+// Crashes and hangs.
+
+TEST_F(GltfHostile, NodeChainHundredThousandDeepLoadsAndFlattensWithoutStackOverflow) {
+    constexpr int depth = 100'000;
+    json doc = triangle();
+    doc["nodes"] = json::array();
+    for (int i = 0; i < depth; ++i) {
+        json node = {{"translation", {0.0, 0.0, 1e-6}}};
+        if (i + 1 < depth) node["children"] = {i + 1};
+        else node["mesh"] = 0;
+        doc["nodes"].push_back(node);
+    }
+    const SceneAsset asset = load_gltf(write(doc));
+    ASSERT_EQ(asset.nodes.size(), std::size_t(depth));
+    const Scene scene = flatten(asset, FlattenOptions{});
+    EXPECT_EQ(scene.triangle_count(), 1u);
+    EXPECT_NEAR(scene.positions[0].z, depth * 1e-6f, 1e-3f);
+}
+
+TEST_F(GltfHostile, JsonNestedDeeperThanTheLimitIsRefusedBeforeParsing) {
+    const int depth = 100'000;
+    json doc = triangle();
+    std::string text = doc.dump();
+    text.pop_back();   // reopen the root object and add deeply nested extras
+    text += R"(,"extras":)" + std::string(depth, '[') + std::string(depth, ']') + "}";
+    expect_refused(write(text), "nests deeper than 512");
+}
+
+TEST_F(GltfHostile, BracketsInsideStringsDoNotCountAsNesting) {
+    json doc = triangle();
+    doc["asset"]["generator"] = std::string(2000, '[');
+    EXPECT_EQ(load_gltf(write(doc)).meshes.size(), 1u);
+}
+
+TEST_F(GltfHostile, GlbWithDeeplyNestedJsonChunkIsRefused) {
+    std::string chunk =
+        R"({"asset":{"version":"2.0"},"extras":)" + std::string(5000, '[') + std::string(5000, ']') + "}";
+    while (chunk.size() % 4) chunk += ' ';
+    std::string glb = "glTF";
+    auto u32 = [&](std::uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(2);
+    u32(std::uint32_t(12 + 8 + chunk.size()));
+    u32(std::uint32_t(chunk.size()));
+    glb += "JSON" + chunk;
+    expect_refused(write(glb, "deep.glb"), "nests deeper than 512");
+}
+
+TEST_F(GltfHostile, BufferUriNamingAFifoIsRefusedWithoutBlocking) {
+    ASSERT_EQ(::mkfifo(file("pipe.bin").c_str(), 0600), 0);
+    json doc = triangle();
+    doc["buffers"][0]["uri"] = "pipe.bin";
+    const auto start = std::chrono::steady_clock::now();
+    expect_refused(doc, "pipe.bin': is a FIFO");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
+TEST_F(GltfHostile, BufferUriNamingAFolderADeviceOrNothingIsRefused) {
+    fs::create_directories(file("folder.bin"));
+    json doc = triangle();
+    doc["buffers"][0]["uri"] = "folder.bin";
+    expect_refused(doc, "folder.bin': is a folder");
+    doc["buffers"][0]["uri"] = "missing.bin";
+    expect_refused(doc, "missing.bin': no such file");
+    fs::create_symlink("/dev/zero", file("zero.bin"));   // URIs are relative: reach the device through a link
+    doc["buffers"][0]["uri"] = "zero.bin";
+    expect_refused(doc, "zero.bin': is a device");
+}
+
+TEST_F(GltfHostile, ImageUriNamingAFolderIsRefused) {
+    fs::create_directories(file("picture.png"));
+    json doc = triangle();
+    doc["images"] = {{{"uri", "picture.png"}}};
+    expect_refused(doc, "picture.png': is a folder");
+}
+
+TEST_F(GltfHostile, ImageLargerThanTheLimitIsRefusedBeforeDecoding) {
+    // Only a PNG signature and IHDR claiming 20000 x 100 pixels: refused from the header, never decoded.
+    std::string png = "\x89PNG\r\n\x1a\n";
+    png += std::string("\0\0\0\x0dIHDR", 8);
+    png += std::string("\0\0\x4e\x20\0\0\0\x64", 8);   // big-endian 20000, 100
+    png += std::string(17, '\0');
+    std::ofstream(file("big.png"), std::ios::binary) << png;
+    json doc = triangle();
+    doc["images"] = {{{"uri", "big.png"}}};
+    expect_refused(doc, "image 0 is 20000 x 100 pixels, more than 16384 on a side");
+}
+
+TEST_F(GltfHostile, InputFilesListTheSceneAndEveryBufferRead) {
+    const std::string path = write(triangle());
+    const SceneAsset asset = load_gltf(path);
+    ASSERT_EQ(asset.input_files.size(), 2u);
+    EXPECT_EQ(asset.input_files[0], path);
+    EXPECT_TRUE(fs::equivalent(asset.input_files[1], file("tri.bin")));
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The triangle budget.
+
+TEST_F(GltfHostile, InstancingBeyondTheTriangleBudgetIsRefusedBeforeFlattening) {
+    json doc = triangle();
+    doc["nodes"] = json::array();
+    const int instances = 5000;
+    for (int i = 0; i < instances; ++i) doc["nodes"].push_back({{"mesh", 0}});
+    doc["scenes"][0]["nodes"] = json::array();
+    for (int i = 0; i < instances; ++i) doc["scenes"][0]["nodes"].push_back(i);
+    const SceneAsset asset = load_gltf(write(doc));
+    FlattenOptions options;
+    options.max_triangles = instances - 1;
+    try {
+        flatten(asset, options);
+        ADD_FAILURE() << "a scene over the budget was flattened";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("has 5000 triangles"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("--max-triangles"), std::string::npos) << e.what();
+    }
+    options.max_triangles = instances;
+    EXPECT_EQ(flatten(asset, options).triangle_count(), std::size_t(instances));
+    EXPECT_EQ(FlattenOptions{}.max_triangles, kDefaultMaxTriangles);
+}
+
+TEST_F(GltfHostile, AccessorsAddingUpPastTheLoaderBudgetAreRefusedBeforeCopying) {
+    json doc = triangle();
+    doc["accessors"][0]["count"] = (std::uint64_t(1) << 28) + 1;
+    expect_refused(doc, "mesh 0 primitive 0: the file's accessors add up to more than 268435456 elements");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Strict glTF: what tinygltf silently accepts.
+
+TEST_F(GltfHostile, NodeMembersOfTheWrongJsonTypeAreRefused) {
+    auto with = [&](const char* key, json value) {
+        json doc = triangle();
+        doc["nodes"][0][key] = value;
+        return doc;
+    };
+    expect_refused(with("mesh", "0"), "node 0: mesh must be a non-negative integer");
+    expect_refused(with("mesh", -1), "node 0: mesh must be a non-negative integer");
+    expect_refused(with("camera", 0.5), "node 0: camera must be a non-negative integer");
+    expect_refused(with("children", 1), "node 0: children must be an array");
+    expect_refused(with("children", {"1"}), "node 0: children must be an array");
+}
+
+TEST_F(GltfHostile, TransformsOfTheWrongSizeAreRefused) {
+    auto with = [&](const char* key, json value) {
+        json doc = triangle();
+        doc["nodes"][0][key] = value;
+        return doc;
+    };
+    expect_refused(with("translation", {1, 2}), "translation must be an array of 3 numbers");
+    expect_refused(with("rotation", {0, 0, 1}), "rotation must be an array of 4 numbers");
+    expect_refused(with("scale", {1, 1, 1, 1}), "scale must be an array of 3 numbers");
+    expect_refused(with("matrix", std::vector<double>(15, 0.0)), "matrix must be an array of 16 numbers");
+    expect_refused(with("translation", {1, "2", 3}), "translation must be an array of 3 numbers");
+}
+
+TEST_F(GltfHostile, SceneIndexOutOfRangeIsRefused) {
+    json doc = triangle();
+    doc["scene"] = 3;
+    expect_refused(doc, "scene 3 does not exist");
+    doc["scene"] = "0";
+    expect_refused(doc, "scene must be a non-negative integer");
+}
+
+TEST_F(GltfHostile, AssetVersionOtherThanTwoIsRefused) {
+    json doc = triangle();
+    doc["asset"]["version"] = "1.0";
+    expect_refused(doc, "asset.version is '1.0'");
+    doc["asset"].erase("version");
+    expect_refused(doc, "asset.version is missing");
+}
+
+TEST_F(GltfHostile, RequiredExtensionTheLoaderLacksIsRefused) {
+    json doc = triangle();
+    doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+    doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    expect_refused(doc, "requires extension KHR_draco_mesh_compression");
+}
+
+TEST_F(GltfHostile, RequiredExtensionTheLoaderSupportsLoads) {
+    json doc = triangle();
+    doc["extensionsUsed"] = {"KHR_materials_ior"};
+    doc["extensionsRequired"] = {"KHR_materials_ior"};
+    doc["materials"] = {{{"extensions", {{"KHR_materials_ior", {{"ior", 1.33}}}}}}};
+    doc["meshes"][0]["primitives"][0]["material"] = 0;
+    const SceneAsset asset = load_gltf(write(doc));
+    ASSERT_EQ(asset.materials.size(), 1u);
+    EXPECT_FLOAT_EQ(asset.materials[0].ior, 1.33f);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Values: refused when they do not fit a float, clamped (with a warning) when outside glTF's range.
+
+TEST_F(GltfHostile, ValuesThatDoNotFitAFloatAreRefused) {
+    json doc = triangle();
+    doc["meshes"][0]["primitives"][0]["material"] = 0;
+    doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {1e39, 1, 1, 1}}}}}};
+    expect_refused(doc, "material 0: baseColorFactor is 1e+39, which does not fit a float");
+    doc["materials"] = {{{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 1e39}}}}}}};
+    expect_refused(doc, "emissiveStrength is 1e+39");
+    doc["materials"] = json::array();
+    doc["meshes"][0]["primitives"][0].erase("material");
+    doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", -1e39}}}}}}};
+    expect_refused(doc, "light 0: intensity is -1e+39");
+    doc.erase("extensions");
+    doc["nodes"][0]["translation"] = {0, 1e300, 0};
+    expect_refused(doc, "node 0: translation is 1e+300");
+}
+
+TEST_F(GltfHostile, NegativeAndOutOfRangeValuesAreClampedWithAWarning) {
+    json doc = triangle();
+    doc["meshes"][0]["primitives"][0]["material"] = 0;
+    doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {-0.5, 2, 0.5, 1}}}},
+                         {"emissiveFactor", {-1, 0, 0}},
+                         {"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}}};
+    doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", -5}}}}}}};
+    doc["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+    std::string warnings;
+    const SceneAsset asset = load_gltf(write(doc), &warnings);
+    EXPECT_EQ(asset.materials[0].base_color, glm::vec4(0.0f, 1.0f, 0.5f, 1.0f));
+    EXPECT_EQ(asset.materials[0].emissive, glm::vec3(0.0f));
+    EXPECT_EQ(asset.materials[0].ior, 1.0f);
+    EXPECT_EQ(asset.lights[0].intensity, 0.0f);
+    EXPECT_NE(warnings.find("baseColorFactor -0.5 is outside [0, 1]; clamped to 0"), std::string::npos) << warnings;
+    EXPECT_NE(warnings.find("light 0: intensity -5"), std::string::npos) << warnings;
+}
+
+}  // namespace
+}  // namespace rt
