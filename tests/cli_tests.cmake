@@ -82,6 +82,10 @@ function(rt_add_cli_tests stage)
              COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
     set_tests_properties(cli.${stage}.${mode} PROPERTIES LABELS "cli;cli-${stage}")
   endforeach()
+  add_test(NAME cli.${stage}.extreme_values_stay_finite
+           COMMAND ${CMAKE_COMMAND} -DMODE=extreme_values_stay_finite -DEXE=${exe} -DOUT_DIR=${out}
+                   -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
+  set_tests_properties(cli.${stage}.extreme_values_stay_finite PROPERTIES LABELS "cli;cli-${stage}")
   set_tests_properties(cli.${stage}.stats_has_every_key cli.${stage}.diffuse_scene_spends_nothing_on_unused_effects
                        cli.${stage}.export_gltf_renders_like_builtin cli.${stage}.frames_write_numbered_images
                        PROPERTIES LABELS "cli;cli-${stage}")

@@ -282,6 +282,23 @@ elseif(MODE STREQUAL "static_frames")
     message(FATAL_ERROR "expected a warning and exit 0, got ${rc}: ${err}")
   endif()
 
+elseif(MODE STREQUAL "extreme_values_stay_finite")
+  # The most extreme values a glTF file may carry and still be accepted (docs/shading.md, "Values from files"):
+  # lights of 3e38 (just under the float maximum), one of them touching the floor, an emissive strength of 3e38, a
+  # half-transmissive half-metallic material. Every pixel must be finite, in every stage.
+  set(dir ${OUT_DIR}/extreme_values)
+  file(REMOVE_RECURSE ${dir})
+  file(MAKE_DIRECTORY ${dir})
+  file(WRITE ${dir}/extreme.gltf [=[{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission"], "buffers": [{"byteLength": 108, "uri": "data:application/octet-stream;base64,AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AACAPwAAAAAAAIA/AACAvwAAAAAAAIC/AACAPwAAAAAAAIA/AACAvwAAAAAAAIA/AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AAAAAAAAgD8AAIC/"}], "bufferViews": [{"buffer": 0, "byteLength": 108}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 9, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 1, 1]}], "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.5, "roughnessFactor": 0}, "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3e+38}, "KHR_materials_transmission": {"transmissionFactor": 0.5}}}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}], "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 3e+38, "color": [1, 1, 1]}, {"type": "directional", "intensity": 3e+38}]}}, "nodes": [{"mesh": 0}, {"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 0, 0]}, {"extensions": {"KHR_lights_punctual": {"light": 1}}, "rotation": [-0.7071068, 0, 0, 0.7071068]}], "scenes": [{"nodes": [0, 1, 2]}], "scene": 0}]=])
+  render(rc err --scene ${dir}/extreme.gltf --effects all --width 32 --height 24 --out ${dir}/extreme.exr --quiet)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the extreme scene did not render (exit ${rc}): ${err}")
+  endif()
+  execute_process(COMMAND ${COMPARE} ${dir}/extreme.exr --finite-only --name extreme RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "non-finite pixels in ${dir}/extreme.exr")
+  endif()
+
 else()
   message(FATAL_ERROR "unknown MODE ${MODE}")
 endif()
