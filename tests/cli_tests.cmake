@@ -39,8 +39,8 @@ function(rt_add_cli_tests stage)
            COMMAND ${CMAKE_COMMAND} -DMODE=frames -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
   # Hostile input, by class (issue 7). Each case: class.name|regex its one-line error must match|argument|...;
   # @DIR@ is the case's own folder of fixtures (file, link.png -> target.png, loop_a <-> loop_b, fifo.png, folder.png,
-  # read_only.png, and, when named, scene.gltf with its hard link hard_link.json), @LONG@ a 300-byte name. The case
-  # must exit 2 with that one line and leave the folder exactly as it was (run_cli_case.cmake, MODE refused).
+  # read_only.png, and, when named, scene.gltf with its hard link hard_link.json, or textured.gltf with its own
+  # buffer.bin and texture.png), @LONG@ a 300-byte name. The case must exit 2 with that one line and leave the folder exactly as it was (run_cli_case.cmake, MODE refused).
   set(refused
       "non_finite_option.fps_nan|--fps: nan is not a finite number|--fps|nan|--out|@DIR@/x.png"
       "non_finite_option.cutoff_nan|--cutoff: nan is not a finite number|--cutoff|nan|--out|@DIR@/x.png"
@@ -53,6 +53,8 @@ function(rt_add_cli_tests stage)
       "output_clobbers_input.stats_is_scene|--stats .*scene.gltf: is the scene's input file|--scene|@DIR@/scene.gltf|--stats|@DIR@/scene.gltf|--out|@DIR@/x.png"
       "output_clobbers_input.export_is_scene|--export .*scene.gltf: is the scene's input file|--scene|@DIR@/scene.gltf|--export|@DIR@/../output_clobbers_input.export_is_scene/scene.gltf"
       "output_clobbers_input.hard_link|--stats .*hard_link.json: is the scene's input file|--scene|@DIR@/scene.gltf|--stats|@DIR@/hard_link.json|--out|@DIR@/x.png"
+      "output_clobbers_input.out_is_texture|--out .*texture.png: is the scene's input file|--scene|@DIR@/textured.gltf|--out|@DIR@/texture.png"
+      "output_clobbers_input.stats_is_buffer|--stats .*buffer.bin: is the scene's input file|--scene|@DIR@/textured.gltf|--stats|@DIR@/buffer.bin|--out|@DIR@/x.png"
       "output_clobbers_output.out_is_stats|--out .*x.png: is the same file as --stats|--out|@DIR@/x.png|--stats|@DIR@/./x.png"
       "output_clobbers_output.frame_is_stats|--out .*x_0001.png: is the same file as --stats|--scene|builtin:dynamic|--frames|3|--out|@DIR@/x.png|--stats|@DIR@/x_0001.png"
       "unsafe_output_target.symlink|--out .*link.png: is a symbolic link|--out|@DIR@/link.png|--stats|@DIR@/x.json"
