@@ -270,7 +270,8 @@ TEST(Bindings, WavefrontQueuesHaveTheCppLayout) {
         {"weight", offsetof(WavefrontRay, weight)},       {"depth_kind", offsetof(WavefrontRay, depth_kind)},
         {"path", offsetof(WavefrontRay, path)},           {"light", offsetof(WavefrontRay, light)},
         {"pad0", offsetof(WavefrontRay, pad0)},           {"pad1", offsetof(WavefrontRay, pad1)}};
-    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRaysIn", array_of<WavefrontRay>("wf_rays_in", 0, ray));
+    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRaysIn",
+                  array_of<WavefrontRay>("wf_rays_in", 0, ray));
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRaySlots",
                   array_of<WavefrontRay>("wf_ray_slots", 0, ray));
     std::vector<std::pair<std::string, std::size_t>> hit = {{"triangle", offsetof(WavefrontHit, triangle)},
@@ -293,7 +294,8 @@ TEST(Bindings, WavefrontQueuesHaveTheCppLayout) {
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfImage", {{"wf_image[0]", {0, GLint(sizeof(glm::vec4))}}});
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfTestsPerPixel",
                   {{"wf_tests_per_pixel[0]", {0, GLint(sizeof(std::uint32_t))}}});
-    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfFlags", {{"wf_flags[0]", {0, GLint(sizeof(std::uint32_t))}}});
+    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfFlags",
+                  {{"wf_flags[0]", {0, GLint(sizeof(std::uint32_t))}}});
 }
 
 }  // namespace

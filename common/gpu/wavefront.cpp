@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "../app/input_error.h"
 #include "bindings.h"
 
 namespace rt::gpu {
@@ -33,7 +34,7 @@ std::size_t env_storage_limit() {
     if (!text || !*text) return 0;
     char* end = nullptr;
     const unsigned long long v = std::strtoull(text, &end, 10);
-    if (*end != '\0' || v == 0) throw std::runtime_error("RT_MAX_SSBO_BYTES: expected a positive number of bytes");
+    if (*end != '\0' || v == 0) throw InputError("RT_MAX_SSBO_BYTES: expected a positive number of bytes");
     return std::size_t(v);
 }
 
@@ -75,18 +76,18 @@ void Wavefront::size_batches() {
     const std::size_t tile_row_bytes = kRadianceBytesPerPixel * std::size_t(settings_.width) * 8;
     const std::size_t tests_bytes = settings_.record_tests_per_pixel ? pixels_ * sizeof(std::uint32_t) : 0;
     if (tile_row_bytes > storage_limit_ || tests_bytes > storage_limit_)
-        throw std::runtime_error("wavefront: a " + std::to_string(settings_.width) + "x" +
-                                 std::to_string(settings_.height) + " image needs " +
-                                 std::to_string(std::max(tile_row_bytes, tests_bytes)) +
-                                 " bytes of per-pixel storage in one block, more than the " +
-                                 std::to_string(storage_limit_) + "-byte storage block limit of this device");
+        throw InputError("wavefront: a " + std::to_string(settings_.width) + "x" +
+                         std::to_string(settings_.height) + " image needs " +
+                         std::to_string(std::max(tile_row_bytes, tests_bytes)) +
+                         " bytes of per-pixel storage in one block, more than the storage block limit of " +
+                         std::to_string(storage_limit_) + " bytes (the device's, or RT_MAX_SSBO_BYTES)");
     band_tile_rows_ = storage_limit_ / tile_row_bytes;
     const std::size_t rays_per_hit = std::size_t(secondary_ ? 2 : 0) + (shadows_ ? 1 : 0);
     const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
     batch_ = storage_limit_ / per_hit;
     if (batch_ < kTilePixels)
-        throw std::runtime_error("wavefront: the storage block limit (" + std::to_string(storage_limit_) +
-                                 " bytes) cannot hold one 8x8 tile of rays");
+        throw InputError("wavefront: the storage block limit (" + std::to_string(storage_limit_) +
+                         " bytes) cannot hold one 8x8 tile of rays");
 }
 
 void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& settings) {
