@@ -263,6 +263,7 @@ void Wavefront::shade_sample(const Program& primary_pass) {
         hit_slots_.bind(kBindingWavefrontHits);
         flags_.bind(kBindingWavefrontFlags);
         radiance_.bind(kBindingWavefrontRadiance);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingWavefrontTestsPerPixel);   // tests it may make
         primary_pass.dispatch_threads(slots);
         record_pass("primary_hits");
         pass_barrier();
