@@ -11,14 +11,34 @@
 // camera ray (camera.glsl, the twin of rt::camera_ray) is therefore intersected, with the shared ray/triangle test,
 // with every distinct triangle of the 3x3 G-buffer neighbourhood of the pixel (its own included): a triangle the
 // ray hits but the rasterizer gave to the pixel next door is in that neighbourhood. The closest hit is kept, ties
-// to the lowest id, as brute force does, and no hit means the background. These tests are counted
-// (wf_count_tests), like a traversal's; the rays stay "rasterized" in the stats (docs/gpu.md).
+// to the lowest id, as brute force does. One case remains: a sliver triangle seen edge-on at a silhouette that no
+// pixel rasterizes. The ray then misses the pixel's own G-buffer triangle and finds nothing (or something behind)
+// though the rasterizer saw a surface there: the point where the ray meets that triangle's plane stands in for
+// the sliver's hit, as close to it as shading needs. These tests are counted (wf_count_tests), like a traversal's;
+// the rays stay "rasterized" in the stats (docs/gpu.md).
 #include "wavefront/wavefront.glsl"
 #include "scene.glsl"
 
 layout(local_size_x = 64) in;
 
 layout(binding = RT_TEXTURE_UNIT_STAGE_FIRST) uniform usampler2D gbuffer_triangle_ids;   // triangle + 1, 0 = none
+
+// Where the ray meets the plane of triangle (a, b, c): Moller-Trumbore without its inside tests; false when the
+// ray runs along the plane or meets it behind the origin.
+bool plane_hit(Ray ray, vec3 a, vec3 b, vec3 c, out float t, out float u, out float v) {
+    precise vec3 e1 = b - a;
+    precise vec3 e2 = c - a;
+    precise vec3 p = rt_cross(ray.direction, e2);
+    precise float det = rt_dot(e1, p);
+    if (det == 0.0) return false;
+    precise float inv_det = 1.0 / det;
+    precise vec3 s = ray.origin - a;
+    precise vec3 q = rt_cross(s, e1);
+    u = rt_dot(s, p) * inv_det;
+    v = rt_dot(ray.direction, q) * inv_det;
+    t = rt_dot(e2, q) * inv_det;
+    return t > 0.0 && rt_isfinite(t);
+}
 
 // The distinct triangles of the 3x3 pixels around p (clamped to the image), in increasing id order; returns how
 // many.
@@ -75,6 +95,21 @@ void main() {
         if (intersect_triangle(RT_INTERSECT_METHOD, ray, a, b, c, t, u, v)) {
             ray.tmax = t;
             e.triangle = int(ids[k]);
+            e.t = t;
+            e.u = u;
+            e.v = v;
+        }
+    }
+    // The sliver case (see the top): the G-buffer's own triangle, missed, but its plane in front of any hit found,
+    // by more than rounding (a relative 1e-4: where two surfaces meet, at a corner, the plane of one and the other's
+    // hit are a few ulps apart, and the hit found is the right one).
+    const uint own = texelFetch(gbuffer_triangle_ids, p, 0).r;   // triangle + 1, 0 = none
+    if (own != 0u && e.triangle != int(own - 1u)) {
+        vec3 a, b, c;
+        load_triangle(own - 1u, a, b, c);
+        float t, u, v;
+        if (plane_hit(ray, a, b, c, t, u, v) && (e.triangle < 0 || t < e.t * (1.0 - 1e-4))) {
+            e.triangle = int(own - 1u);
             e.t = t;
             e.u = u;
             e.v = v;
