@@ -35,8 +35,8 @@ if(MODE STREQUAL "dump_hits_and_heatmap_per_frame")
   endforeach()
   # The heatmap (stats "heatmap": the last frame's) accounts for every ray/triangle test of its frame: the per-pixel
   # counts sum to the frame's intersection_tests. Where the stage traces the primary rays, every pixel tests at least
-  # one triangle (min > 0); rasterized primaries (rays.rasterized > 0, stage 02) test none, so an empty pixel may
-  # hold 0 there.
+  # one triangle (min > 0); a rasterized primary (rays.rasterized > 0, stage 02) tests only the triangles of its
+  # 3x3 G-buffer neighbourhood, none where that is empty, so a background pixel may hold 0 there.
   string(JSON min GET "${json}" heatmap min)
   string(JSON max GET "${json}" heatmap max)
   string(JSON total GET "${json}" heatmap total)
