@@ -4,26 +4,29 @@ function(rt_add_cli_tests stage)
   set(out ${CMAKE_BINARY_DIR}/test-output/cli/${stage})
   set(exe $<TARGET_FILE:${stage}>)
   set(script ${CMAKE_CURRENT_SOURCE_DIR}/run_cli_case.cmake)
-  # Each case: name|argument|argument|... (the --out file must not be created)
+  # Each case: name|argument|argument|... (the --out file must not be created). @DIR@ is the case's own folder: the
+  # cases check that no temporary is left behind, so they must not share a folder with tests that write outputs
+  # (under ctest -j, another test's temporary in a shared folder failed them now and then).
   set(cases
-      "width_zero|--width|0|--out|${out}/width_zero.png"
-      "height_absurd|--height|99999999|--out|${out}/height_absurd.png"
-      "missing_file|--scene|${out}/does_not_exist.gltf|--out|${out}/missing_file.png"
-      "malformed_gltf|--scene|${out}/malformed.gltf|--out|${out}/malformed_gltf.png"
-      "unknown_builtin|--scene|builtin:nosuchscene|--out|${out}/unknown_builtin.png"
-      "unknown_option|--no-such-option|--out|${out}/unknown_option.png"
-      "bad_effect|--effects|shadows,glitter|--out|${out}/bad_effect.png"
-      "bad_image_type|--out|${out}/bad_image_type.bmp"
-      "out_folder_missing|--out|${out}/no/such/folder/x.png"
-      "camera_out_of_range|--camera|7|--out|${out}/camera_out_of_range.png")
+      "width_zero|--width|0|--out|@DIR@/width_zero.png"
+      "height_absurd|--height|99999999|--out|@DIR@/height_absurd.png"
+      "missing_file|--scene|@DIR@/does_not_exist.gltf|--out|@DIR@/missing_file.png"
+      "malformed_gltf|--scene|@DIR@/malformed.gltf|--out|@DIR@/malformed_gltf.png"
+      "unknown_builtin|--scene|builtin:nosuchscene|--out|@DIR@/unknown_builtin.png"
+      "unknown_option|--no-such-option|--out|@DIR@/unknown_option.png"
+      "bad_effect|--effects|shadows,glitter|--out|@DIR@/bad_effect.png"
+      "bad_image_type|--out|@DIR@/bad_image_type.bmp"
+      "out_folder_missing|--out|@DIR@/no/such/folder/x.png"
+      "camera_out_of_range|--camera|7|--out|@DIR@/camera_out_of_range.png")
   foreach(case IN LISTS cases)
     # Arguments travel to the script "|"-separated (a ";" would split the test command).
     string(FIND "${case}" "|" bar)
     string(SUBSTRING "${case}" 0 ${bar} name)
     math(EXPR bar "${bar} + 1")
     string(SUBSTRING "${case}" ${bar} -1 args)
+    string(REPLACE "@DIR@" "${out}/bad_input_${name}" args "${args}")
     add_test(NAME cli.${stage}.bad_input_${name}
-             COMMAND ${CMAKE_COMMAND} -DMODE=bad_input -DEXE=${exe} -DOUT_DIR=${out} "-DARGS=${args}"
+             COMMAND ${CMAKE_COMMAND} -DMODE=bad_input -DEXE=${exe} -DOUT_DIR=${out}/bad_input_${name} "-DARGS=${args}"
                      -DNAME=${name} -P ${script})
     set_tests_properties(cli.${stage}.bad_input_${name} PROPERTIES LABELS "cli;cli-${stage}")
   endforeach()
@@ -68,6 +71,13 @@ function(rt_add_cli_tests stage)
       "bad_path.scene_name_too_long|cannot read scene .*nnnn.gltf: File name too long|--scene|@DIR@/@LONG@.gltf|--out|@DIR@/x.png"
       "bad_path.scene_under_regular_file|cannot read scene .*file/x.gltf: Not a directory|--scene|@DIR@/file/x.gltf|--out|@DIR@/x.png"
       "bad_path.scene_is_fifo|scene .*fifo.png is not a regular file|--scene|@DIR@/fifo.png|--out|@DIR@/x.png")
+  # GPU stages: an image whose per-pixel sums do not fit one storage block (forced small with $RT_MAX_SSBO_BYTES; a
+  # 16384-wide image on llvmpipe's 128 MiB does the same) is bad input, and so is a malformed limit.
+  if(stage IN_LIST RT_GPU_STAGES)
+    list(APPEND refused
+         "storage_limit.image_too_large|a 1024x8 image needs 294912 bytes .*storage block limit of 65536 bytes|--width|1024|--height|8|--out|@DIR@/x.png"
+         "storage_limit.bad_env|RT_MAX_SSBO_BYTES: expected a positive number of bytes|--out|@DIR@/x.png")
+  endif()
   foreach(case IN LISTS refused)
     string(REPLACE "|" ";" parts "${case}")
     list(GET parts 0 name)
@@ -79,6 +89,10 @@ function(rt_add_cli_tests stage)
                      "-DEXPECT=${expect}" -DNAME=${name} -P ${script})
     set_tests_properties(cli.${stage}.${name} PROPERTIES LABELS "cli;cli-${stage}")
   endforeach()
+  if(stage IN_LIST RT_GPU_STAGES)
+    set_tests_properties(cli.${stage}.storage_limit.image_too_large PROPERTIES ENVIRONMENT RT_MAX_SSBO_BYTES=65536)
+    set_tests_properties(cli.${stage}.storage_limit.bad_env PROPERTIES ENVIRONMENT RT_MAX_SSBO_BYTES=64k)
+  endif()
   foreach(mode closed_stdout concurrent_export interrupted static_frames)
     add_test(NAME cli.${stage}.${mode}
              COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})

@@ -2,10 +2,9 @@
 # labelled "diagnostics" and "diagnostics-<stage>":
 #   diag.<stage>.dump_hits_and_heatmap_per_frame  with --frames 2, one hit file and one heatmap per frame; each hit
 #                                                 file holds exactly the frame's traced rays (its stats' ray counts);
-#                                                 the stats state the heatmap's min and max
+#                                                 the heatmap's per-pixel tests sum to the frame's
+#                                                 intersection_tests, and with traced primaries none is 0
 #   diag.<stage>.dump_hits_refuses_max_depth_31   path numbers have 31 bits: exit 2 with one line, no file written
-# Until the GPU wavefront fills FrameResult::hits and tests_per_pixel (issue 8, the GPU side), the first test FAILS
-# for 02_raster_hybrid on purpose.
 function(rt_add_diagnostics_tests stage)
   set(out ${CMAKE_BINARY_DIR}/test-output/diagnostics/${stage})
   foreach(mode dump_hits_and_heatmap_per_frame dump_hits_refuses_max_depth_31)

@@ -18,6 +18,8 @@ function(json_get out_var json)   # json_get(var json key...) fails the test whe
 endfunction()
 
 if(MODE STREQUAL "bad_input")
+  file(REMOVE_RECURSE ${OUT_DIR})   # the case's own folder
+  file(MAKE_DIRECTORY ${OUT_DIR})
   # A malformed glTF the test writes itself: valid JSON, but an accessor points past its buffer.
   file(WRITE ${OUT_DIR}/malformed.gltf [=[{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
 "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
@@ -39,9 +41,11 @@ if(MODE STREQUAL "bad_input")
   if(EXISTS ${out_file})
     message(FATAL_ERROR "bad input still wrote ${out_file}")
   endif()
-  file(GLOB leftovers ${OUT_DIR}/.*tmp*)
+  # The case's own folder (cli_tests.cmake) holds nothing but the fixture it was given.
+  file(GLOB leftovers ${OUT_DIR}/* ${OUT_DIR}/.*)
+  list(REMOVE_ITEM leftovers ${OUT_DIR}/malformed.gltf)
   if(leftovers)
-    message(FATAL_ERROR "temporary files left behind: ${leftovers}")
+    message(FATAL_ERROR "files left behind: ${leftovers}")
   endif()
   message(STATUS "${NAME}: exit 2, '${err}'")
 

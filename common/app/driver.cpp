@@ -19,6 +19,7 @@
 #include "atomic_file.h"
 #include "heatmap.h"
 #include "hit_file.h"
+#include "input_error.h"
 #include "options.h"
 #include "output_files.h"
 #include "progress.h"
@@ -26,11 +27,6 @@
 namespace rt {
 
 namespace {
-
-// Errors the user can fix (bad options, bad scene, bad output path): exit code 2.
-struct InputError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
 
 // Lines on stdout. The reader may go away (`01_naive ... | head -c1`): SIGPIPE is ignored (run_stage), and after the
 // first failed write nothing more is printed, while rendering and the output files carry on; the exit code is not

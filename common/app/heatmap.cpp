@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 #include "../trace/shading.h"
@@ -44,6 +45,7 @@ Heatmap make_heatmap(const std::vector<std::uint32_t>& tests, int width, int hei
     h.scale = scale;
     h.min = tests.empty() ? 0 : *std::min_element(tests.begin(), tests.end());
     h.max = tests.empty() ? 0 : *std::max_element(tests.begin(), tests.end());
+    h.total = std::accumulate(tests.begin(), tests.end(), std::uint64_t(0));
     h.colour_bar_rows = std::max(4, height / 10);
     h.image = Image(width, height + h.colour_bar_rows);
     for (int y = 0; y < height; ++y)
@@ -68,6 +70,7 @@ Heatmap make_heatmap(const std::vector<std::uint32_t>& tests, int width, int hei
 nlohmann::json heatmap_json(const Heatmap& h) {
     return {{"min", h.min},
             {"max", h.max},
+            {"total", h.total},
             {"scale", h.scale == HeatmapScale::Log ? "log" : "linear"},
             {"ticks", h.ticks},
             {"colour_bar_rows", h.colour_bar_rows}};

@@ -21,6 +21,7 @@ struct Heatmap {
     Image image;                // the picture (width x height), then colour_bar_rows rows of colour bar
     int colour_bar_rows = 0;
     std::uint32_t min = 0, max = 0;
+    std::uint64_t total = 0;    // the sum over the pixels: the frame's intersection_tests (every test has a pixel)
     HeatmapScale scale = HeatmapScale::Linear;
     std::vector<double> ticks;  // the counts at the tick marks, left to right
 };
@@ -28,7 +29,7 @@ struct Heatmap {
 // tests_per_pixel has width * height entries (y * width + x).
 Heatmap make_heatmap(const std::vector<std::uint32_t>& tests_per_pixel, int width, int height, HeatmapScale scale);
 
-// {"min", "max", "scale", "ticks", "colour_bar_rows"} for the stats JSON.
+// {"min", "max", "total", "scale", "ticks", "colour_bar_rows"} for the stats JSON.
 nlohmann::json heatmap_json(const Heatmap& heatmap);
 
 // The colour of s in [0, 1] (linear RGB, written as the sRGB of the colour map).

@@ -13,6 +13,7 @@ TEST(Heatmap, MinAndMaxTakeTheEndsOfTheColourScale) {
     const Heatmap h = make_heatmap(tests, 3, 2, HeatmapScale::Linear);
     EXPECT_EQ(h.min, 10u);
     EXPECT_EQ(h.max, 60u);
+    EXPECT_EQ(h.total, 210u);
     EXPECT_EQ(h.image.width, 3);
     EXPECT_EQ(h.image.height, 2 + h.colour_bar_rows);
     EXPECT_EQ(h.image.at(0, 0), heatmap_colour(0.0f));
@@ -23,6 +24,7 @@ TEST(Heatmap, MinAndMaxTakeTheEndsOfTheColourScale) {
     const nlohmann::json j = heatmap_json(h);
     EXPECT_EQ(j["min"], 10);
     EXPECT_EQ(j["max"], 60);
+    EXPECT_EQ(j["total"], 210);
     EXPECT_EQ(j["scale"], "linear");
     EXPECT_EQ(j["ticks"], nlohmann::json({10.0, 22.5, 35.0, 47.5, 60.0}));
 }

@@ -45,14 +45,16 @@ constexpr unsigned kBindingSortValuesOut = kBindingCompactOut;
 constexpr unsigned kBindingStageFirst = 16;
 
 // The wavefront pipeline (wavefront.glsl: WF_BINDING_*), from kBindingStageFirst; a traversal's own buffers start at
-// kWavefrontBindingTraversalFirst (wavefront.h).
-constexpr unsigned kBindingWavefrontRaysIn = kBindingStageFirst + 0;
-constexpr unsigned kBindingWavefrontHits = kBindingStageFirst + 1;
-constexpr unsigned kBindingWavefrontRaysOut = kBindingStageFirst + 2;
-constexpr unsigned kBindingWavefrontShadowRays = kBindingStageFirst + 3;
-constexpr unsigned kBindingWavefrontRadiance = kBindingStageFirst + 4;
-constexpr unsigned kBindingWavefrontQueueCounts = kBindingStageFirst + 5;
-constexpr unsigned kBindingWavefrontImage = kBindingStageFirst + 6;
+// kBindingWavefrontTraversalFirst.
+constexpr unsigned kBindingWavefrontRaysIn = kBindingStageFirst + 0;        // WavefrontRay[]: a pass' input queue
+constexpr unsigned kBindingWavefrontHits = kBindingStageFirst + 1;          // WavefrontHit[]
+constexpr unsigned kBindingWavefrontRaySlots = kBindingStageFirst + 2;      // WavefrontRay[]: a pass' output slots
+constexpr unsigned kBindingWavefrontFlags = kBindingStageFirst + 3;         // uint[]: 1 = output slot used
+constexpr unsigned kBindingWavefrontRadiance = kBindingStageFirst + 4;      // uint[9 per pixel]: 96-bit sums
+constexpr unsigned kBindingWavefrontResults = kBindingStageFirst + 5;       // WavefrontTraceResult[] or uint[]
+constexpr unsigned kBindingWavefrontImage = kBindingStageFirst + 6;         // vec4[] per pixel
+constexpr unsigned kBindingWavefrontTestsPerPixel = kBindingStageFirst + 7; // uint[] per pixel (--heatmap)
+constexpr unsigned kBindingWavefrontTraversalFirst = kBindingStageFirst + 8;
 
 constexpr unsigned kUboScene = 0;
 constexpr unsigned kUboStageFirst = 1;

@@ -40,12 +40,14 @@ void main() {
 )";
 
 const char* kWavefrontDeclarations = R"(
+#define RECORD_TESTS_PER_PIXEL 1
 #include "wavefront/wavefront.glsl"
 layout(local_size_x = 1) in;
+layout(std430, binding = WF_BINDING_RESULTS) buffer WfTraceResults { WavefrontTraceResult wf_trace_results[]; };
 layout(std430, binding = WF_BINDING_TRAVERSAL_FIRST) buffer TestTraversalFirst { uint test_traversal_first[]; };
 void main() {
-    float f = wf_rays_in[0].tmax + wf_hits[0].t + wf_rays_out[0].tmax + wf_shadow_rays[0].tmax
-            + float(wf_radiance[0]) + float(wf_count_hits) + wf_image[0].x + float(test_traversal_first[0]);
+    float f = wf_rays_in[0].tmax + wf_hits[0].t + wf_ray_slots[0].tmax + float(wf_flags[0]) + float(wf_radiance[0])
+            + wf_trace_results[0].t + wf_image[0].x + float(wf_tests_per_pixel[0]) + float(test_traversal_first[0]);
     wf_image[0].y = f;
 }
 )";
@@ -144,10 +146,11 @@ TEST(Bindings, SceneAndWavefrontSsbosAreWhereTheCppSideBindsThem) {
         {"SceneMaterials", kBindingMaterials},       {"SceneLights", kBindingLights},
         {"SceneTextures", kBindingTextureInfo},      {"RtCounters", kBindingCounters},
         {"WfRaysIn", kBindingWavefrontRaysIn},       {"WfHits", kBindingWavefrontHits},
-        {"WfRaysOut", kBindingWavefrontRaysOut},     {"WfShadowRays", kBindingWavefrontShadowRays},
-        {"WfRadiance", kBindingWavefrontRadiance},   {"WfQueueCounts", kBindingWavefrontQueueCounts},
-        {"WfImage", kBindingWavefrontImage},         {"TestHarness", kBindingHarness},
-        {"TestStageFirst", kBindingStageFirst},      {"TestTraversalFirst", kWavefrontBindingTraversalFirst}};
+        {"WfRaySlots", kBindingWavefrontRaySlots},   {"WfFlags", kBindingWavefrontFlags},
+        {"WfRadiance", kBindingWavefrontRadiance},   {"WfTraceResults", kBindingWavefrontResults},
+        {"WfImage", kBindingWavefrontImage},         {"WfTestsPerPixel", kBindingWavefrontTestsPerPixel},
+        {"TestHarness", kBindingHarness},            {"TestStageFirst", kBindingStageFirst},
+        {"TestTraversalFirst", kBindingWavefrontTraversalFirst}};
     for (const auto& [block, binding] : ssbos) {
         const GLuint p = block.starts_with("Wf") || block == "TestTraversalFirst" ? wavefront_program() : scene_program();
         EXPECT_EQ(block_binding(p, GL_SHADER_STORAGE_BLOCK, block.c_str()), GLint(binding)) << block;
@@ -264,23 +267,35 @@ TEST(Bindings, WavefrontQueuesHaveTheCppLayout) {
     const std::vector<std::pair<std::string, std::size_t>> ray = {
         {"origin", offsetof(WavefrontRay, origin)},       {"tmax", offsetof(WavefrontRay, tmax)},
         {"direction", offsetof(WavefrontRay, direction)}, {"pixel", offsetof(WavefrontRay, pixel)},
-        {"weight", offsetof(WavefrontRay, weight)},       {"depth_kind", offsetof(WavefrontRay, depth_kind)}};
-    for (const char* block : {"WfRaysIn", "WfRaysOut", "WfShadowRays"}) {
-        const std::string array = std::string(block) == "WfRaysIn"    ? "wf_rays_in"
-                                  : std::string(block) == "WfRaysOut" ? "wf_rays_out"
-                                                                      : "wf_shadow_rays";
-        expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, block, array_of<WavefrontRay>(array, 0, ray));
-    }
+        {"weight", offsetof(WavefrontRay, weight)},       {"depth_kind", offsetof(WavefrontRay, depth_kind)},
+        {"path", offsetof(WavefrontRay, path)},           {"light", offsetof(WavefrontRay, light)},
+        {"pad0", offsetof(WavefrontRay, pad0)},           {"pad1", offsetof(WavefrontRay, pad1)}};
+    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRaysIn",
+                  array_of<WavefrontRay>("wf_rays_in", 0, ray));
+    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRaySlots",
+                  array_of<WavefrontRay>("wf_ray_slots", 0, ray));
     std::vector<std::pair<std::string, std::size_t>> hit = {{"triangle", offsetof(WavefrontHit, triangle)},
                                                             {"t", offsetof(WavefrontHit, t)},
                                                             {"u", offsetof(WavefrontHit, u)},
                                                             {"v", offsetof(WavefrontHit, v)}};
     for (const auto& [name, offset] : ray) hit.emplace_back("ray." + name, offsetof(WavefrontHit, ray) + offset);
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfHits", array_of<WavefrontHit>("wf_hits", 0, hit));
-    // Radiance: 3 fixed-point ints per pixel; the image: a vec4 per pixel (Wavefront sizes them so).
+    // The trace pass' results (the shadow pass writes a uint per ray to the same binding, shadow.comp).
+    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfTraceResults",
+                  array_of<WavefrontTraceResult>("wf_trace_results", 0,
+                                                 {{"triangle", offsetof(WavefrontTraceResult, triangle)},
+                                                  {"t", offsetof(WavefrontTraceResult, t)},
+                                                  {"u", offsetof(WavefrontTraceResult, u)},
+                                                  {"v", offsetof(WavefrontTraceResult, v)}}));
+    // Per pixel: 9 fixed-point limbs of radiance (kRadianceBytesPerPixel in wavefront.cpp), a vec4 of the image, a
+    // test count; per output slot a flag.
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRadiance",
-                  {{"wf_radiance[0]", {0, GLint(sizeof(std::int32_t))}}});
+                  {{"wf_radiance[0]", {0, GLint(sizeof(std::uint32_t))}}});
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfImage", {{"wf_image[0]", {0, GLint(sizeof(glm::vec4))}}});
+    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfTestsPerPixel",
+                  {{"wf_tests_per_pixel[0]", {0, GLint(sizeof(std::uint32_t))}}});
+    expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfFlags",
+                  {{"wf_flags[0]", {0, GLint(sizeof(std::uint32_t))}}});
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 // Rasterized primary visibility, the first pass of the stages that rasterize instead of tracing primary rays
 // (02, and the ray-hierarchy stages 04-05, after Roger, Assarsson & Holzschuch 2007 and Reis):
 //  1. render(): rasterize the scene into a G-buffer. Each pixel gets the index of the nearest triangle at its sample
-//     position (R32UI, triangle + 1, 0 = none) and its depth (32-bit float, reversed). That is exactly what a
-//     primary ray through the pixel would find, for the price of one draw call (shaders raster/gbuffer.vert, .frag).
+//     position (R32UI, triangle + 1, 0 = none) and its depth (32-bit float, reversed), for the price of one draw
+//     call (shaders raster/gbuffer.vert, .frag). That is what a primary ray through the pixel finds, except on
+//     edges and silhouettes, where the fill rule and subpixel snapping decide (see 2.).
 //  2. shade_sample(): turn each pixel into a primary hit of the wavefront pipeline (raster/primary_hits.comp) and
 //     let the pipeline shade them and trace every bounce.
 #pragma once
@@ -37,8 +38,9 @@ public:
     GLuint triangle_id_texture() const { return ids_; }
 
     // Pass 2 and on: the pixels of the G-buffer become the pipeline's primary hits (the camera ray of each pixel
-    // intersected with its triangle, so barycentrics match the CPU's; empty pixels add the background), in the
-    // pipeline's primary order, and Wavefront::shade_sample does the rest of the sample. Compiled with the
+    // intersected with the triangles of its 3x3 neighbourhood in the G-buffer, the closest kept, ties to the lowest
+    // id: brute force's hit, see raster/primary_hits.comp; no hit adds the background), in the pipeline's primary
+    // order, and Wavefront::shade_sample does the rest of the sample. Compiled with the
     // pipeline's defines. The pipeline's begin_frame() must have run and the scene must be bound.
     void shade_sample(Wavefront& wavefront, glm::vec2 offset);
 

@@ -6,24 +6,12 @@
 #include <stdexcept>
 #include <utility>
 
+#include "../app/input_error.h"
 #include "bindings.h"
 
 namespace rt::gpu {
 
 namespace {
-
-// Binding points of wavefront.glsl.
-constexpr unsigned kBindingRaysIn = kBindingStageFirst + 0;
-constexpr unsigned kBindingHits = kBindingStageFirst + 1;
-constexpr unsigned kBindingRaySlots = kBindingStageFirst + 2;
-constexpr unsigned kBindingFlags = kBindingStageFirst + 3;
-constexpr unsigned kBindingRadiance = kBindingStageFirst + 4;
-constexpr unsigned kBindingResults = kBindingStageFirst + 5;
-constexpr unsigned kBindingImage = kBindingStageFirst + 6;
-constexpr unsigned kBindingTestsPerPixel = kBindingStageFirst + 7;
-static_assert(kWavefrontBindingRaysIn == kBindingRaysIn && kWavefrontBindingResults == kBindingResults &&
-              kWavefrontBindingTestsPerPixel == kBindingTestsPerPixel);
-static_assert(kWavefrontBindingTraversalFirst == kBindingStageFirst + 8);
 
 constexpr std::size_t kTilePixels = 64;                  // 8x8 tiles (wavefront.glsl: wf_tile_pixel)
 constexpr std::size_t kRadianceBytesPerPixel = 9 * 4;    // 3 channels x 3 limbs (wf_accumulate)
@@ -46,7 +34,7 @@ std::size_t env_storage_limit() {
     if (!text || !*text) return 0;
     char* end = nullptr;
     const unsigned long long v = std::strtoull(text, &end, 10);
-    if (*end != '\0' || v == 0) throw std::runtime_error("RT_MAX_SSBO_BYTES: expected a positive number of bytes");
+    if (*end != '\0' || v == 0) throw InputError("RT_MAX_SSBO_BYTES: expected a positive number of bytes");
     return std::size_t(v);
 }
 
@@ -88,18 +76,18 @@ void Wavefront::size_batches() {
     const std::size_t tile_row_bytes = kRadianceBytesPerPixel * std::size_t(settings_.width) * 8;
     const std::size_t tests_bytes = settings_.record_tests_per_pixel ? pixels_ * sizeof(std::uint32_t) : 0;
     if (tile_row_bytes > storage_limit_ || tests_bytes > storage_limit_)
-        throw std::runtime_error("wavefront: a " + std::to_string(settings_.width) + "x" +
-                                 std::to_string(settings_.height) + " image needs " +
-                                 std::to_string(std::max(tile_row_bytes, tests_bytes)) +
-                                 " bytes of per-pixel storage in one block, more than the " +
-                                 std::to_string(storage_limit_) + "-byte storage block limit of this device");
+        throw InputError("wavefront: a " + std::to_string(settings_.width) + "x" +
+                         std::to_string(settings_.height) + " image needs " +
+                         std::to_string(std::max(tile_row_bytes, tests_bytes)) +
+                         " bytes of per-pixel storage in one block, more than the storage block limit of " +
+                         std::to_string(storage_limit_) + " bytes (the device's, or RT_MAX_SSBO_BYTES)");
     band_tile_rows_ = storage_limit_ / tile_row_bytes;
     const std::size_t rays_per_hit = std::size_t(secondary_ ? 2 : 0) + (shadows_ ? 1 : 0);
     const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
     batch_ = storage_limit_ / per_hit;
     if (batch_ < kTilePixels)
-        throw std::runtime_error("wavefront: the storage block limit (" + std::to_string(storage_limit_) +
-                                 " bytes) cannot hold one 8x8 tile of rays");
+        throw InputError("wavefront: the storage block limit (" + std::to_string(storage_limit_) +
+                         " bytes) cannot hold one 8x8 tile of rays");
 }
 
 void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& settings) {
@@ -272,9 +260,10 @@ void Wavefront::shade_sample(const Program& primary_pass) {
         primary_pass.set("wf_tile_first", unsigned(first_tile));
         primary_pass.set("wf_pixel_first", pixel_first);
         primary_pass.set("wf_input_count", unsigned(slots));
-        hit_slots_.bind(kBindingHits);
-        flags_.bind(kBindingFlags);
-        radiance_.bind(kBindingRadiance);
+        hit_slots_.bind(kBindingWavefrontHits);
+        flags_.bind(kBindingWavefrontFlags);
+        radiance_.bind(kBindingWavefrontRadiance);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingWavefrontTestsPerPixel);   // tests it may make
         primary_pass.dispatch_threads(slots);
         record_pass("primary_hits");
         pass_barrier();
@@ -304,8 +293,8 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
         flags_.reserve(slots * sizeof(std::uint32_t));
         camera_.set("wf_tile_first", unsigned(first_tile));
         camera_.set("wf_input_count", unsigned(slots));
-        ray_slots_.bind(kBindingRaySlots);
-        flags_.bind(kBindingFlags);
+        ray_slots_.bind(kBindingWavefrontRaySlots);
+        flags_.bind(kBindingWavefrontFlags);
         PassTimer timed(timer, "camera_rays");
         camera_.dispatch_threads(slots);
         record_pass("camera_rays");
@@ -354,10 +343,10 @@ void Wavefront::run_shade(std::size_t hits, unsigned light_first, unsigned light
                                            secondary_ && local ? 2 * hits : std::size_t(0));
     ray_slots_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(WavefrontRay));
     flags_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(std::uint32_t));
-    hits_.bind(kBindingHits);
-    ray_slots_.bind(kBindingRaySlots);
-    flags_.bind(kBindingFlags);
-    radiance_.bind(kBindingRadiance);
+    hits_.bind(kBindingWavefrontHits);
+    ray_slots_.bind(kBindingWavefrontRaySlots);
+    flags_.bind(kBindingWavefrontFlags);
+    radiance_.bind(kBindingWavefrontRadiance);
     shade_.set("wf_input_count", unsigned(hits));
     shade_.set("wf_light_first", light_first);
     shade_.set("wf_light_count", light_count);
@@ -377,8 +366,8 @@ void Wavefront::run_rays(Buffer& rays, std::size_t count, int depth) {
         run_trace(rays, first, n);
         hit_slots_.reserve(n * sizeof(WavefrontHit));
         flags_.reserve(n * sizeof(std::uint32_t));
-        hit_slots_.bind(kBindingHits);
-        flags_.bind(kBindingFlags);
+        hit_slots_.bind(kBindingWavefrontHits);
+        flags_.bind(kBindingWavefrontFlags);
         run_collect(trace_collect_, rays, first, n);
         const std::size_t hits = compact(hit_slots_, n, sizeof(WavefrontHit) / 4, hits_);
         if (hits > 0) process_hits(hits, depth);
@@ -391,9 +380,9 @@ void Wavefront::run_trace(Buffer& rays, std::size_t first, std::size_t count) {
     if (traversal_.trace_batch) {
         traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
     } else {
-        rays.bind(kBindingRaysIn);
-        results_.bind(kBindingResults);
-        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingTestsPerPixel);
+        rays.bind(kBindingWavefrontRaysIn);
+        results_.bind(kBindingWavefrontResults);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingWavefrontTestsPerPixel);
         bind_traversal();
         trace_.set("wf_input_first", unsigned(first));
         trace_.set("wf_input_count", unsigned(count));
@@ -411,9 +400,9 @@ void Wavefront::run_shadow(Buffer& rays, std::size_t first, std::size_t count) {
     if (traversal_.shadow_batch) {
         traversal_.shadow_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
     } else {
-        rays.bind(kBindingRaysIn);
-        results_.bind(kBindingResults);
-        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingTestsPerPixel);
+        rays.bind(kBindingWavefrontRaysIn);
+        results_.bind(kBindingWavefrontResults);
+        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingWavefrontTestsPerPixel);
         bind_traversal();
         shadow_.set("wf_input_first", unsigned(first));
         shadow_.set("wf_input_count", unsigned(count));
@@ -428,9 +417,9 @@ void Wavefront::run_shadow(Buffer& rays, std::size_t first, std::size_t count) {
 
 // The pass after a traversal: reads results_ (one per ray) and adds radiance (and, for trace, fills hit slots).
 void Wavefront::run_collect(const Program& collect, Buffer& rays, std::size_t first, std::size_t count) {
-    rays.bind(kBindingRaysIn);
-    results_.bind(kBindingResults);
-    radiance_.bind(kBindingRadiance);
+    rays.bind(kBindingWavefrontRaysIn);
+    results_.bind(kBindingWavefrontResults);
+    radiance_.bind(kBindingWavefrontRadiance);
     collect.set("wf_input_first", unsigned(first));
     collect.set("wf_input_count", unsigned(count));
     collect.dispatch_threads(count);
@@ -466,8 +455,8 @@ void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t c
 
 void Wavefront::resolve(std::size_t band) {
     const PassTimer timed(timer, "resolve");
-    radiance_.bind(kBindingRadiance);
-    image_bands_[band].bind(kBindingImage);
+    radiance_.bind(kBindingWavefrontRadiance);
+    image_bands_[band].bind(kBindingWavefrontImage);
     const std::size_t pixels = band_pixels(band).second;
     resolve_.set("wf_input_count", unsigned(pixels));
     resolve_.dispatch_threads(pixels);

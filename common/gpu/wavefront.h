@@ -43,6 +43,7 @@
 #include "../app/hit_record.h"
 #include "../app/image.h"
 #include "../app/renderer.h"
+#include "bindings.h"
 #include "buffer.h"
 #include "gpu_scene.h"
 #include "scan.h"
@@ -51,11 +52,11 @@
 namespace rt::gpu {
 
 // SSBO bindings of wavefront.glsl a batch traversal's passes use (WF_BINDING_RAYS_IN, _RESULTS, _TESTS_PER_PIXEL).
-constexpr unsigned kWavefrontBindingRaysIn = 16;
-constexpr unsigned kWavefrontBindingResults = 21;
-constexpr unsigned kWavefrontBindingTestsPerPixel = 23;
+constexpr unsigned kWavefrontBindingRaysIn = kBindingWavefrontRaysIn;
+constexpr unsigned kWavefrontBindingResults = kBindingWavefrontResults;
+constexpr unsigned kWavefrontBindingTestsPerPixel = kBindingWavefrontTestsPerPixel;
 // First SSBO binding a traversal may use for its own data (wavefront.glsl: WF_BINDING_TRAVERSAL_FIRST).
-constexpr unsigned kWavefrontBindingTraversalFirst = 24;
+constexpr unsigned kWavefrontBindingTraversalFirst = kBindingWavefrontTraversalFirst;
 // The primary-hit pass of a stage may bind its own textures from here (02 binds its G-buffer).
 constexpr unsigned kWavefrontFirstFreeTextureUnit = 1;
 
