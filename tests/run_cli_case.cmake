@@ -9,6 +9,20 @@ function(render rc_var err_var)   # render(<result var> <stderr var> args...)
   set(${err_var} "${err}" PARENT_SCOPE)
 endfunction()
 
+function(fresh_folder var name)   # fresh_folder(<var> <name>): an empty folder of the case's own
+  set(dir ${OUT_DIR}/${name})
+  file(REMOVE_RECURSE ${dir})
+  file(MAKE_DIRECTORY ${dir})
+  set(${var} ${dir} PARENT_SCOPE)
+endfunction()
+
+function(expect_no_temporaries dir)   # temporaries are hidden files (.NAME.tmp-XXXXXXXXXX.EXT)
+  file(GLOB leftovers ${dir}/.*)
+  if(leftovers)
+    message(FATAL_ERROR "temporary files left behind: ${leftovers}")
+  endif()
+endfunction()
+
 function(json_get out_var json)   # json_get(var json key...) fails the test when the key is missing
   string(JSON value ERROR_VARIABLE error GET "${json}" ${ARGN})
   if(error)
@@ -224,9 +238,7 @@ elseif(MODE STREQUAL "refused")
 
 elseif(MODE STREQUAL "closed_stdout")
   # `stage ... | head -c1`: the reader goes away after one byte. The run must go on, write every output, exit 0.
-  set(dir ${OUT_DIR}/closed_stdout)
-  file(REMOVE_RECURSE ${dir})
-  file(MAKE_DIRECTORY ${dir})
+  fresh_folder(dir closed_stdout)
   execute_process(COMMAND ${EXE} --scene builtin:dynamic --width 48 --height 36 --frames 6 --out ${dir}/f.png
                           --stats ${dir}/f.json
                   COMMAND head -c1
@@ -240,17 +252,12 @@ elseif(MODE STREQUAL "closed_stdout")
       message(FATAL_ERROR "missing ${f} after stdout closed")
     endif()
   endforeach()
-  file(GLOB leftovers ${dir}/.*)
-  if(leftovers)
-    message(FATAL_ERROR "temporary files left behind: ${leftovers}")
-  endif()
+  expect_no_temporaries(${dir})
 
 elseif(MODE STREQUAL "concurrent_export")
   # Two runs exporting to the same path at the same time (a pipeline runs its commands concurrently), several times:
   # the file is always one complete glTF, and no temporary is left.
-  set(dir ${OUT_DIR}/concurrent_export)
-  file(REMOVE_RECURSE ${dir})
-  file(MAKE_DIRECTORY ${dir})
+  fresh_folder(dir concurrent_export)
   foreach(round RANGE 4)
     execute_process(COMMAND ${EXE} --scene builtin:spheres:300 --export ${dir}/same.gltf --quiet
                     COMMAND ${EXE} --scene builtin:cornell --export ${dir}/same.gltf --quiet
@@ -264,16 +271,11 @@ elseif(MODE STREQUAL "concurrent_export")
       message(FATAL_ERROR "round ${round}: same.gltf is not valid glTF JSON: ${error}")
     endif()
   endforeach()
-  file(GLOB leftovers ${dir}/.*)
-  if(leftovers)
-    message(FATAL_ERROR "temporary files left behind: ${leftovers}")
-  endif()
+  expect_no_temporaries(${dir})
 
 elseif(MODE STREQUAL "interrupted")
   # SIGTERM in the middle of a long render: the temporaries created before rendering are removed, nothing is left.
-  set(dir ${OUT_DIR}/interrupted)
-  file(REMOVE_RECURSE ${dir})
-  file(MAKE_DIRECTORY ${dir})
+  fresh_folder(dir interrupted)
   execute_process(COMMAND sh -c "\"$0\" --scene builtin:spheres:200 --width 1600 --height 1200 --spp 16 --quiet \
 --out \"$1/big.png\" --stats \"$1/big.json\" & pid=$!; i=0; \
 while [ -z \"$(ls -A \"$1\")\" ] && [ $i -lt 600 ]; do sleep 0.05; i=$((i+1)); done; \
@@ -289,9 +291,7 @@ ls -A \"$1\"; kill -TERM $pid; wait $pid; echo \"exit $?\"" ${EXE} ${dir}
 
 elseif(MODE STREQUAL "static_frames")
   # --frames on a scene without animation renders, but says in one line that every frame is the same.
-  set(dir ${OUT_DIR}/static_frames)
-  file(REMOVE_RECURSE ${dir})
-  file(MAKE_DIRECTORY ${dir})
+  fresh_folder(dir static_frames)
   render(rc err --scene builtin:whitted --width 16 --height 12 --frames 2 --out ${dir}/s.png)
   if(NOT rc EQUAL 0 OR NOT err MATCHES "warning: --frames 2 on a static scene")
     message(FATAL_ERROR "expected a warning and exit 0, got ${rc}: ${err}")
@@ -301,9 +301,7 @@ elseif(MODE STREQUAL "extreme_values_stay_finite")
   # The most extreme values a glTF file may carry and still be accepted (docs/shading.md, "Values from files"):
   # lights of 3e38 (just under the float maximum), one of them touching the floor, an emissive strength of 3e38, a
   # half-transmissive half-metallic material. Every pixel must be finite, in every stage.
-  set(dir ${OUT_DIR}/extreme_values)
-  file(REMOVE_RECURSE ${dir})
-  file(MAKE_DIRECTORY ${dir})
+  fresh_folder(dir extreme_values)
   file(WRITE ${dir}/extreme.gltf [=[{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission"], "buffers": [{"byteLength": 108, "uri": "data:application/octet-stream;base64,AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AACAPwAAAAAAAIA/AACAvwAAAAAAAIC/AACAPwAAAAAAAIA/AACAvwAAAAAAAIA/AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AAAAAAAAgD8AAIC/"}], "bufferViews": [{"buffer": 0, "byteLength": 108}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 9, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 1, 1]}], "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.5, "roughnessFactor": 0}, "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 3e+38}, "KHR_materials_transmission": {"transmissionFactor": 0.5}}}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}], "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 3e+38, "color": [1, 1, 1]}, {"type": "directional", "intensity": 3e+38}]}}, "nodes": [{"mesh": 0}, {"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 0, 0]}, {"extensions": {"KHR_lights_punctual": {"light": 1}}, "rotation": [-0.7071068, 0, 0, 0.7071068]}], "scenes": [{"nodes": [0, 1, 2]}], "scene": 0}]=])
   render(rc err --scene ${dir}/extreme.gltf --effects all --width 32 --height 24 --out ${dir}/extreme.exr --quiet)
   if(NOT rc EQUAL 0)
