@@ -3,7 +3,6 @@
 // passes through. The wavefront pipeline (common/gpu/wavefront.h) calls trace_closest from its trace pass and
 // trace_any from its shadow pass. Shader path: "03_uniform_grid/grid.glsl". C++ twin: walk_grid in uniform_grid.cpp.
 #include "wavefront/wavefront.glsl"
-#include "scene.glsl"
 #include "grid_common.glsl"
 
 
@@ -31,7 +30,7 @@ void grid_record(uint cells, uint tests, bool bound_reached) {}
 
 bool grid_intersect(Ray ray, WatertightRay w, uint i, out float t, out float u, out float v) {
     vec3 a, b, c;
-    load_triangle(i, a, b, c);
+    grid_load_triangle(i, a, b, c);
 #if RT_INTERSECT_METHOD == RT_INTERSECT_WATERTIGHT
     return intersect_watertight(ray, w, a, b, c, t, u, v);
 #else

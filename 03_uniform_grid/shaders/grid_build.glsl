@@ -5,13 +5,12 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = RT_BINDING_POSITIONS) readonly buffer ScenePositions { vec4 rt_positions[]; };
-
 void grid_visit_cell(uint triangle, uint cell, uint k);
 
 // Returns how many cells triangle t overlaps.
 uint grid_for_each_cell(uint t) {
-    const vec3 a = rt_positions[3u * t].xyz, b = rt_positions[3u * t + 1u].xyz, c = rt_positions[3u * t + 2u].xyz;
+    vec3 a, b, c;
+    grid_load_triangle(t, a, b, c);
     ivec3 first, last;
     grid_triangle_cell_range(a, b, c, first, last);
     uint k = 0u;

@@ -24,6 +24,15 @@ layout(std430, binding = GRID_BINDING) buffer Grid {
     uint grid_data[];
 };
 
+// The scene's vertex positions (scene.glsl's rt_positions, the same buffer): the grid's passes read nothing else of
+// the scene, and declaring only this block keeps the trace and shadow passes within the 16 blocks a shader may use.
+layout(std430, binding = RT_BINDING_POSITIONS) readonly buffer GridPositions { vec4 grid_positions[]; };
+void grid_load_triangle(uint t, out vec3 a, out vec3 b, out vec3 c) {
+    a = grid_positions[3u * t].xyz;
+    b = grid_positions[3u * t + 1u].xyz;
+    c = grid_positions[3u * t + 2u].xyz;
+}
+
 uvec2 grid_cell_range(uint cell) { return uvec2(grid_data[2u * cell], grid_data[2u * cell + 1u]); }
 uint grid_triangle(uint k) { return grid_data[2u * grid_cell_count + k]; }
 
