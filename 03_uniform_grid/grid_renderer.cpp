@@ -17,10 +17,10 @@ glm::ivec3 parse_grid_res(const std::string& text) {
     std::istringstream in(text);
     char c1 = 0, c2 = 0;
     if (!(in >> res.x >> c1 >> res.y >> c2 >> res.z) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof())
-        throw std::invalid_argument("--grid-res '" + text + "': expected X,Y,Z (three positive integers)");
+        throw std::invalid_argument("'" + text + "': expected X,Y,Z (three positive integers)");
     for (int a = 0; a < 3; ++a)
         if (res[a] < 1 || res[a] > kMaxGridResPerAxis)
-            throw std::invalid_argument("--grid-res '" + text + "': each axis must be in 1.." +
+            throw std::invalid_argument("'" + text + "': each axis must be in 1.." +
                                         std::to_string(kMaxGridResPerAxis));
     return res;
 }

@@ -171,4 +171,87 @@ int walk_grid(const GridParams& g, glm::vec3 o, glm::vec3 d, float tmax,
     return visited;
 }
 
+namespace {
+
+struct TriangleTest {
+    const std::vector<glm::vec3>& positions;
+    IntersectMethod method;
+    WatertightRay<float> w;
+    std::size_t tests = 0;
+    bool operator()(const Ray<float>& ray, std::uint32_t t, float& th, float& u, float& v) {
+        ++tests;
+        const glm::vec3 &a = positions[3 * t], &b = positions[3 * t + 1], &c = positions[3 * t + 2];
+        return method == IntersectMethod::Watertight ? intersect_watertight(ray, w, a, b, c, th, u, v)
+                                                     : intersect_moller(ray, a, b, c, th, u, v);
+    }
+};
+
+// Brute force's fold over some triangles, in increasing id: each hit shrinks tmax for the next.
+void fold_hit(TriangleTest& test, Ray<float>& ray, std::uint32_t t, Hit<float>& hit) {
+    float th, u, v;
+    if (test(ray, t, th, u, v)) {
+        hit = {th, u, v, std::int32_t(t)};
+        ray.tmax = th;
+    }
+}
+
+}  // namespace
+
+Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& positions, const Ray<float>& ray,
+                            IntersectMethod method, GridTraceCount* count) {
+    const GridParams& g = grid.params;
+    TriangleTest test{positions, method, WatertightRay<float>(ray.direction)};
+    Hit<float> best;
+    float second = std::numeric_limits<float>::infinity();   // the smallest t of another triangle
+    GridStep ring[kGridTieCells];                             // the last cells visited
+    int visited = 0;
+    bool bound = false;
+    // Phase 1: the walk.
+    walk_grid(g, ray.origin, ray.direction, ray.tmax, [&](const GridStep& step) {
+        ring[visited++ % kGridTieCells] = step;
+        for (std::uint32_t t : grid.cells[std::size_t(step.cell.x) + std::size_t(g.res.x) * (step.cell.y + std::size_t(g.res.y) * step.cell.z)]) {
+            float th, u, v;
+            if (!test(ray, t, th, u, v) || std::int32_t(t) == best.triangle) continue;
+            if (th < best.t || (th == best.t && std::int32_t(t) < best.triangle)) {
+                if (best.valid()) second = std::min(second, best.t);
+                best = {th, u, v, std::int32_t(t)};
+            } else {
+                second = std::min(second, th);
+            }
+        }
+        return !(best.valid() && best.t * (1.0f + kGridTieRange) < step.t1);
+    }, &bound);
+    // Phase 2: near ties, in brute force's order.
+    if (best.valid() && second <= best.t * (1.0f + kGridTieRange)) {
+        const float lo = best.t * (1.0f - kGridTieRange), hi = best.t * (1.0f + kGridTieRange);
+        const int kept = std::min(visited, kGridTieCells);
+        std::vector<const std::vector<std::uint32_t>*> lists;
+        for (int i = 0; i < kept; ++i) {
+            const GridStep& s = ring[(visited - kept + i) % kGridTieCells];
+            if (s.t1 >= lo && s.t0 <= hi)
+                lists.push_back(&grid.cells[std::size_t(s.cell.x) + std::size_t(g.res.x) * (s.cell.y + std::size_t(g.res.y) * s.cell.z)]);
+        }
+        Ray<float> r = ray;
+        best = Hit<float>();
+        if (visited > kGridTieCells && ring[visited % kGridTieCells].t0 > lo) {
+            for (std::uint32_t t = 0; t < g.triangle_count; ++t) fold_hit(test, r, t, best);   // ties reach further back
+        } else {
+            // Merge the cells' sorted lists: each triangle once, in increasing id.
+            std::vector<std::size_t> cursor(lists.size(), 0);
+            for (std::int64_t last = -1;;) {
+                std::uint32_t next = std::numeric_limits<std::uint32_t>::max();
+                for (std::size_t c = 0; c < lists.size(); ++c) {
+                    while (cursor[c] < lists[c]->size() && std::int64_t((*lists[c])[cursor[c]]) <= last) ++cursor[c];
+                    if (cursor[c] < lists[c]->size()) next = std::min(next, (*lists[c])[cursor[c]]);
+                }
+                if (next == std::numeric_limits<std::uint32_t>::max()) break;
+                fold_hit(test, r, next, best);
+                last = next;
+            }
+        }
+    }
+    if (count) *count = {visited, test.tests, bound};
+    return best;
+}
+
 }  // namespace rt

@@ -21,6 +21,8 @@
 #include <glm/glm.hpp>
 
 #include "common/scene/scene.h"
+#include "common/trace/intersect.h"
+#include "common/trace/ray.h"
 
 namespace rt {
 
@@ -66,5 +68,26 @@ struct GridStep {
 // walk needs) stopped it, which never happens on a correct walk.
 int walk_grid(const GridParams& g, glm::vec3 o, glm::vec3 d, float tmax,
               const std::function<bool(const GridStep&)>& visit, bool* hit_bound = nullptr);
+
+// Closest hit through the grid, exactly brute force's (BruteForceTracer::closest: triangles in id order, each one
+// tested against the tmax the previous hits left). Two phases:
+//   1. Walk: test each visited cell's triangles with the ray's own tmax, keep the smallest t (ties: lowest id), and
+//      stop once that t lies before the current cell's end by a relative kGridTieRange (every triangle that could
+//      hit at that t or before lies in a visited cell).
+//   2. Near ties: when another triangle hit within kGridTieRange of the best t, brute force's answer depends on its
+//      test order (the watertight test compares t with tmax in scaled form, so hits an ulp apart can swap), so those
+//      triangles are tested again as brute force does: in increasing id, each against the tmax the last hit left.
+//      They lie in the last few cells visited (a ring of kGridTieCells); when the tie range reaches further back,
+//      every triangle is tested (never seen in practice, but never wrong).
+// grid.glsl's trace_closest is its GLSL twin.
+constexpr float kGridTieRange = 1e-5f;
+constexpr int kGridTieCells = 8;
+struct GridTraceCount {
+    int cells = 0;
+    std::size_t tests = 0;
+    bool bound_reached = false;
+};
+Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& positions, const Ray<float>& ray,
+                            IntersectMethod method, GridTraceCount* count = nullptr);
 
 }  // namespace rt

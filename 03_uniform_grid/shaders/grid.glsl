@@ -3,7 +3,7 @@
 // passes through. The wavefront pipeline (common/gpu/wavefront.h) calls trace_closest from its trace pass and
 // trace_any from its shadow pass. Shader path: "03_uniform_grid/grid.glsl". C++ twin: walk_grid in uniform_grid.cpp.
 #include "wavefront/wavefront.glsl"
-#include "grid_common.glsl"
+#include "grid_walk.glsl"
 
 
 #ifdef GRID_STATS
@@ -38,99 +38,103 @@ bool grid_intersect(Ray ray, WatertightRay w, uint i, out float t, out float u, 
 #endif
 }
 
-// The walk's state: the current cell, the t-range [t, t1] the ray spends in it, and what is left of the grid box.
-struct GridWalk {
-    ivec3 cell, step;
-    float t, t1, t_exit;
-    int axis;   // the axis whose boundary ends the current cell
-};
+// Closest hit, exactly brute force's (common/brute_force.glsl: triangles in id order, each hit shrinking tmax for
+// the next). grid_closest_hit in uniform_grid.cpp is the C++ twin and explains the two phases:
+//   1. the walk tests each visited cell's triangles with the ray's own tmax and keeps the smallest t (ties: lowest
+//      id); a hit may lie beyond the current cell (its triangle spans cells) where a closer one may wait, so the walk
+//      stops only once the best t lies before the current cell's end (by a relative GRID_TIE_RANGE);
+//   2. when another triangle hit within GRID_TIE_RANGE of the best t, the order of the tests decides between them
+//      (the watertight test compares t with tmax in scaled form): those cells' triangles are tested again in
+//      brute force's order, increasing id, merging the sorted lists of the last few cells visited.
+#define GRID_TIE_RANGE 1e-5
+#define GRID_TIE_CELLS 8
 
-// Enters the grid box (slabs; an axis with d = 0 or -0 only checks the origin) and finds the start cell.
-bool grid_walk_begin(Ray ray, out GridWalk w) {
-    w.t = 0.0;
-    w.t_exit = ray.tmax;
-    w.step = ivec3(0);
-    w.cell = ivec3(0);
-    w.axis = 0;
-    w.t1 = 0.0;
-    for (int a = 0; a < 3; ++a) {
-        const float b0 = grid_boundary(a, 0), b1 = grid_boundary(a, grid_res[a]);
-        const float o = ray.origin[a], d = ray.direction[a];
-        if (d == 0.0) {
-            if (o < b0 || o > b1) return false;
-            continue;
-        }
-        precise float t0 = (b0 - o) / d;
-        precise float t1 = (b1 - o) / d;
-        w.t = max(w.t, min(t0, t1));
-        w.t_exit = min(w.t_exit, max(t0, t1));
+void grid_fold_hit(inout Ray ray, WatertightRay wr, uint tri, inout Hit hit) {
+    float t, u, v;
+    if (grid_intersect(ray, wr, tri, t, u, v)) {
+        ray.tmax = t;
+        hit.t = t;
+        hit.u = u;
+        hit.v = v;
+        hit.triangle = int(tri);
     }
-    if (!(w.t <= w.t_exit)) return false;
-    for (int a = 0; a < 3; ++a) {
-        precise float p = ray.origin[a] + w.t * ray.direction[a];
-        w.cell[a] = grid_cell_of(a, p);
-        w.step[a] = ray.direction[a] > 0.0 ? 1 : (ray.direction[a] < 0.0 ? -1 : 0);
-    }
-    return true;
 }
 
-// tMax per axis: the t of the next boundary (recomputed from the boundary rather than adding tDelta, so the walk
-// agrees with the cells' own boundaries), then the end t1 of the current cell.
-void grid_walk_cell_end(Ray ray, inout GridWalk w) {
-    vec3 t_max;
-    for (int a = 0; a < 3; ++a) {
-        precise float tb = (grid_boundary(a, w.cell[a] + (w.step[a] > 0 ? 1 : 0)) - ray.origin[a]) / ray.direction[a];
-        t_max[a] = w.step[a] == 0 ? RT_INFINITY : tb;
-    }
-    w.axis = t_max.x <= t_max.y ? (t_max.x <= t_max.z ? 0 : 2) : (t_max.y <= t_max.z ? 1 : 2);   // ties: x, y, z
-    w.t1 = max(w.t, min(t_max[w.axis], w.t_exit));
-}
-
-// Steps into the next cell; false when the ray leaves the grid (or its t-range) there.
-bool grid_walk_next(inout GridWalk w) {
-    if (w.t1 >= w.t_exit) return false;
-    w.cell[w.axis] += w.step[w.axis];
-    if (w.cell[w.axis] < 0 || w.cell[w.axis] >= grid_res[w.axis]) return false;
-    w.t = w.t1;
-    return true;
-}
-
-// More steps than any walk takes (it crosses each boundary at most once): reaching it is a bug, counted in the stats.
-int grid_walk_bound() { return grid_res.x + grid_res.y + grid_res.z + 3; }
-
-// Closest hit, exactly brute force's: the smallest t, ties to the lowest triangle id. Triangles are tested cell by
-// cell; a hit beyond the current cell's end may be beaten by one in a later cell, so the walk stops only when the best
-// hit so far lies before the end of the current cell (every triangle that could hit closer or at the same t is
-// listed in a cell already visited).
 bool trace_closest(Ray ray, out Hit hit) {
     hit = no_hit();
     GridWalk w;
     uint cells = 0u, tests = 0u;
     bool bound_reached = false;
+    float second = RT_INFINITY;   // the smallest t of another triangle
+    uint ring_cell[GRID_TIE_CELLS];
+    float ring_t0[GRID_TIE_CELLS], ring_t1[GRID_TIE_CELLS];
+    const WatertightRay wr = watertight_ray(ray.direction);
+    // Phase 1: the walk.
     if (grid_walk_begin(ray, w)) {
-        const WatertightRay wr = watertight_ray(ray.direction);
         const int bound = grid_walk_bound();
         int i = 0;
         for (; i < bound; ++i) {
             grid_walk_cell_end(ray, w);
+            const uint cell = grid_cell_index(w.cell);
+            ring_cell[cells % GRID_TIE_CELLS] = cell;
+            ring_t0[cells % GRID_TIE_CELLS] = w.t;
+            ring_t1[cells % GRID_TIE_CELLS] = w.t1;
             ++cells;
-            const uvec2 range = grid_cell_range(grid_cell_index(w.cell));
+            const uvec2 range = grid_cell_range(cell);
             tests += range.y - range.x;
             for (uint k = range.x; k < range.y; ++k) {
                 const uint tri = grid_triangle(k);
                 float t, u, v;
-                if (grid_intersect(ray, wr, tri, t, u, v) &&
-                    (t < hit.t || (t == hit.t && int(tri) < hit.triangle))) {
+                if (!grid_intersect(ray, wr, tri, t, u, v) || int(tri) == hit.triangle) continue;
+                if (t < hit.t || (t == hit.t && int(tri) < hit.triangle)) {
+                    if (hit.triangle >= 0) second = min(second, hit.t);
                     hit.t = t;
                     hit.u = u;
                     hit.v = v;
                     hit.triangle = int(tri);
+                } else {
+                    second = min(second, t);
                 }
             }
-            if (hit.triangle >= 0 && hit.t < w.t1) break;
+            precise float reach = hit.t * (1.0 + GRID_TIE_RANGE);
+            if (hit.triangle >= 0 && reach < w.t1) break;
             if (!grid_walk_next(w)) break;
         }
         bound_reached = i == bound;
+    }
+    // Phase 2: near ties, in brute force's order.
+    precise float hi = hit.t * (1.0 + GRID_TIE_RANGE);
+    if (hit.triangle >= 0 && second <= hi) {
+        precise float lo = hit.t * (1.0 - GRID_TIE_RANGE);
+        const uint kept = min(cells, uint(GRID_TIE_CELLS));
+        const uint oldest = (cells - kept) % uint(GRID_TIE_CELLS);
+        Ray r = ray;
+        hit = no_hit();
+        if (cells > uint(GRID_TIE_CELLS) && ring_t0[oldest] > lo) {
+            for (uint t = 0u; t < grid_triangle_count; ++t) grid_fold_hit(r, wr, t, hit);   // ties reach further back
+            tests += grid_triangle_count;
+        } else {
+            uint cursor[GRID_TIE_CELLS], end[GRID_TIE_CELLS];
+            for (uint i = 0u; i < kept; ++i) {
+                const uint e = (oldest + i) % uint(GRID_TIE_CELLS);
+                const uvec2 range = grid_cell_range(ring_cell[e]);
+                const bool near = ring_t1[e] >= lo && ring_t0[e] <= hi;
+                cursor[i] = range.x;
+                end[i] = near ? range.y : range.x;
+            }
+            // Merge the cells' sorted lists: each triangle once, in increasing id.
+            for (int last = -1;;) {
+                uint next = 0xffffffffu;
+                for (uint i = 0u; i < kept; ++i) {
+                    while (cursor[i] < end[i] && int(grid_triangle(cursor[i])) <= last) ++cursor[i];
+                    if (cursor[i] < end[i]) next = min(next, grid_triangle(cursor[i]));
+                }
+                if (next == 0xffffffffu) break;
+                grid_fold_hit(r, wr, next, hit);
+                ++tests;
+                last = int(next);
+            }
+        }
     }
     wf_count_tests(tests);
     grid_record(cells, tests, bound_reached);
