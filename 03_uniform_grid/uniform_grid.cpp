@@ -142,6 +142,7 @@ int walk_grid(const GridParams& g, glm::vec3 o, glm::vec3 d, float tmax,
         t_exit = std::min(t_exit, t1);
     }
     if (!(t_enter <= t_exit)) return 0;
+    t_enter = std::abs(t_enter);   // +0, not the -0 an origin on a boundary may give (t_enter >= 0 here)
     // The start cell: where the ray enters (clamped: rounding may put the entry point just outside).
     glm::ivec3 cell, step;
     for (int a = 0; a < 3; ++a) {
@@ -160,7 +161,8 @@ int walk_grid(const GridParams& g, glm::vec3 o, glm::vec3 d, float tmax,
             t_max[a] = step[a] == 0 ? std::numeric_limits<float>::infinity()
                                     : (grid_boundary(g, a, cell[a] + (step[a] > 0 ? 1 : 0)) - o[a]) / d[a];
         const int axis = t_max.x <= t_max.y ? (t_max.x <= t_max.z ? 0 : 2) : (t_max.y <= t_max.z ? 1 : 2);
-        const float t1 = std::max(t, std::min(t_max[axis], t_exit));
+        const float end = std::min(t_max[axis], t_exit);
+        const float t1 = end > t ? end : t;   // the cell ends no earlier than it starts
         ++visited;
         if (!visit({cell, t, t1}) || t1 >= t_exit) return visited;
         cell[axis] += step[axis];

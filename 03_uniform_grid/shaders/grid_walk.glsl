@@ -38,6 +38,7 @@ bool grid_walk_begin(Ray ray, out GridWalk w) {
         w.t_exit = min(w.t_exit, max(t0, t1));
     }
     if (!(w.t <= w.t_exit)) return false;
+    w.t = abs(w.t);   // +0, not the -0 an origin on a boundary gives (t >= 0 here; as walk_grid)
     for (int a = 0; a < 3; ++a) {
         precise float p = ray.origin[a] + w.t * ray.direction[a];
         w.cell[a] = grid_cell_of(a, p);
@@ -55,7 +56,8 @@ void grid_walk_cell_end(Ray ray, inout GridWalk w) {
         t_max[a] = w.step[a] == 0 ? RT_INFINITY : tb;
     }
     w.axis = t_max.x <= t_max.y ? (t_max.x <= t_max.z ? 0 : 2) : (t_max.y <= t_max.z ? 1 : 2);   // ties: x, y, z
-    w.t1 = max(w.t, min(t_max[w.axis], w.t_exit));
+    const float end = min(t_max[w.axis], w.t_exit);
+    w.t1 = end > w.t ? end : w.t;   // not max(): it may return -0 for max(+0, -0), walk_grid gives +0
 }
 
 // Steps into the next cell; false when the ray leaves the grid (or its t-range) there.
