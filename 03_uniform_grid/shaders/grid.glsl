@@ -6,7 +6,7 @@
 #include "grid_walk.glsl"
 
 
-#ifdef GRID_STATS
+#if defined(GRID_STATS) && defined(COUNT_TESTS)   // compiled out without test counting (timing runs)
 // 64-bit counters (lo, hi) in grid_stats, as counters.glsl: per ray kind k (WF_KIND_*) rays [k], cells visited
 // [4 + k], tests [8 + k]; [12] walks stopped by the loop bound (never, on a correct walk).
 void grid_stat_add(uint index, uint value) {
