@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/app/options.h"
+
 namespace rt {
 
 namespace {
@@ -34,7 +36,7 @@ void GridRenderer::add_options(CLI::App& app) {
     app.add_option("--grid-lambda", grid_options.lambda,
                    "Grid cells per triangle for the resolution heuristic (changes the cost, never the image)")
         ->capture_default_str()
-        ->check(CLI::Range(1e-3f, 1e3f));
+        ->check(number_in(1e-3, 1e3));   // finite: NaN and Inf are refused
     app.add_option_function<std::string>(
            "--grid-res", [this](const std::string& s) { grid_options.res = parse_grid_res(s); },
            "Grid resolution X,Y,Z instead of the heuristic")
