@@ -10,6 +10,7 @@
 #include "common/gpu/glsl_test_harness.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/gpu_test_context.h"
+#include "common/gpu/storage_limit.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "dda_cases.h"
@@ -230,6 +231,17 @@ TEST(GridRenderer, TracedPrimaryRaysGiveBruteForcesFrame) {
         EXPECT_GT(grid.extra["grid"]["traversal"]["primary"]["rays"], 0);
         EXPECT_EQ(grid.extra["grid"]["loop_bound_reached"], 0);
     }
+}
+
+TEST(GridRenderer, AHeuristicGridTooLargeForTheStorageLimitLowersLambda) {
+    gpu::test_context();
+    const Scene s = scene_at("spheres:100");
+    RenderSettings settings = small_settings(s);
+    settings.record_hits = false;
+    const FrameResult r = render_grid(s, settings, GridOptions{900.0f});
+    const double lambda_used = r.extra["grid"]["lambda_used"];
+    EXPECT_LT(lambda_used, 900.0);
+    EXPECT_LE(std::size_t(r.extra["grid"]["cells"]) * 8, gpu::max_storage_block_bytes() / 2);
 }
 
 TEST(GridRenderer, NothingIsBuiltWhenNoRayIsTraced) {

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/app/options.h"
+#include "common/gpu/storage_limit.h"
 
 namespace rt {
 
@@ -67,9 +68,18 @@ void GridRenderer::build(const Scene& scene, const RenderSettings& settings) {
     built_ = needs_grid(scene, settings, grid_options.trace_primary);
     if (!built_) return;   // every ray is rasterized: nothing to build
     if (!grid_) grid_ = std::make_unique<GpuGrid>();
-    const glm::ivec3 res = grid_options.res.x > 0
-                               ? grid_options.res
-                               : choose_resolution(scene.bounds, scene.triangle_count(), grid_options.lambda);
+    // The heuristic's grid must leave room in one storage block for the pairs too: when its cells alone would take
+    // over half of it, lambda is halved until they do not (reported as lambda_used). --grid-res is taken as given.
+    glm::ivec3 res = grid_options.res;
+    lambda_used_ = grid_options.lambda;
+    if (res.x == 0) {
+        const std::size_t half_block = gpu::max_storage_block_bytes() / 2;
+        for (;;) {
+            res = choose_resolution(scene.bounds, scene.triangle_count(), lambda_used_);
+            if (std::size_t(res.x) * res.y * res.z * 8 <= half_block || lambda_used_ < 1e-3f) break;
+            lambda_used_ *= 0.5f;
+        }
+    }
     auto scope = timer().scope("build");
     grid_->build(gpu_scene(), make_grid_params(scene.bounds, res, scene.triangle_count()));
 }
@@ -119,6 +129,7 @@ void GridRenderer::add_stage_stats(FrameResult& result) {
     const std::size_t non_empty = g.cell_count - empty;
     grid["resolution"] = {g.res.x, g.res.y, g.res.z};
     grid["lambda"] = grid_options.res.x > 0 ? nlohmann::json(nullptr) : nlohmann::json(grid_options.lambda);
+    grid["lambda_used"] = grid_options.res.x > 0 ? nlohmann::json(nullptr) : nlohmann::json(lambda_used_);
     grid["cells"] = g.cell_count;
     grid["pairs"] = grid_->pairs();
     grid["empty_cells"] = empty;

@@ -46,6 +46,7 @@ private:
     std::unique_ptr<GpuGrid> grid_;           // created with the first frame that needs it (needs the context)
     std::unique_ptr<gpu::GBuffer> gbuffer_;
     bool built_ = false;
+    float lambda_used_ = kDefaultGridLambda;   // lambda after fitting the cells into the storage limit
 };
 
 }  // namespace rt
