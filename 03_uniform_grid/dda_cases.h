@@ -52,8 +52,8 @@ inline std::vector<DdaCase> cases() {
         {"OneCellGrid", grid(glm::ivec3(1)), {-2.0f, 0.25f, 0.75f}, {1.0f, 0.1f, -0.1f}},
         {"FlatGrid", grid(glm::ivec3(8, 1, 8), glm::vec3(0.0f), glm::vec3(0.5f, 1e-3f, 0.5f)), {-1.0f, 5e-4f, 0.1f},
          {1.0f, 0.0f, 0.45f}},
-        {"FarFromTheOrigin", grid(glm::ivec3(16), glm::vec3(1e5f, -2e5f, 3e5f), glm::vec3(0.25f)), {1e5f - 1.0f, -2e5f + 1.0f, 3e5f + 2.0f},
-         {1.0f, 0.6f, -0.3f}},
+        {"FarFromTheOrigin", grid(glm::ivec3(16), glm::vec3(1e5f, -2e5f, 3e5f), glm::vec3(0.25f)),
+         {1e5f - 1.0f, -2e5f + 1.0f, 3e5f + 2.0f}, {1.0f, 0.6f, -0.3f}},
         {"VeryLongRayFromFarAway", grid(glm::ivec3(32, 8, 16)), {-1e4f, 3.3f, 7.7f}, {1.0f, 1e-7f, 1e-6f}},
         {"AxisAlignedDown", g4, {1.5f, 10.0f, 2.5f}, {0.0f, -1.0f, 0.0f}, inf},
     };

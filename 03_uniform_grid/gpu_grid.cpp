@@ -49,7 +49,8 @@ void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {
     scan_.exclusive(offsets_, offsets_, n, &total_);
     pairs_ = total_.download_value<std::uint32_t>();
     const std::size_t bytes = kHeaderBytes + cells * 8 + pairs_ * 4;
-    check_fits(bytes, limit, std::to_string(cells) + " cells and " + std::to_string(pairs_) + " (cell, triangle) pairs");
+    check_fits(bytes, limit,
+               std::to_string(cells) + " cells and " + std::to_string(pairs_) + " (cell, triangle) pairs");
 
     // The whole grid buffer: header, zeroed counters and ranges (cells no pair names stay [0, 0)).
     grid_.reserve(bytes);

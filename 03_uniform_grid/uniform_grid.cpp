@@ -37,6 +37,10 @@ GridParams make_grid_params(const Bounds& bounds, glm::ivec3 res, std::size_t tr
     return g;
 }
 
+std::size_t grid_cell_index(const GridParams& g, glm::ivec3 c) {
+    return std::size_t(c.x) + std::size_t(g.res.x) * (std::size_t(c.y) + std::size_t(g.res.y) * std::size_t(c.z));
+}
+
 float grid_boundary(const GridParams& g, int a, int n) { return g.lo[a] + float(n) * g.cell[a]; }
 
 namespace {
@@ -100,6 +104,8 @@ bool triangle_overlaps_cell(const GridParams& g, glm::ivec3 cell, glm::vec3 a, g
     return triangle_box_overlap(center, half, a, b, c);
 }
 
+const std::vector<std::uint32_t>& CpuGrid::at(glm::ivec3 cell) const { return cells[grid_cell_index(params, cell)]; }
+
 std::size_t CpuGrid::pairs() const {
     std::size_t n = 0;
     for (const auto& c : cells) n += c.size();
@@ -119,7 +125,7 @@ CpuGrid build_grid(const Scene& scene, glm::ivec3 res) {
             for (int y = first.y; y <= last.y; ++y)
                 for (int x = first.x; x <= last.x; ++x)
                     if (triangle_overlaps_cell(g, {x, y, z}, a, b, c))
-                        grid.cells[std::size_t(x) + std::size_t(g.res.x) * (y + std::size_t(g.res.y) * z)].push_back(t);
+                        grid.cells[grid_cell_index(g, {x, y, z})].push_back(t);
     }
     return grid;
 }
@@ -211,7 +217,7 @@ Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& p
     // Phase 1: the walk.
     walk_grid(g, ray.origin, ray.direction, ray.tmax, [&](const GridStep& step) {
         ring[visited++ % kGridTieCells] = step;
-        for (std::uint32_t t : grid.cells[std::size_t(step.cell.x) + std::size_t(g.res.x) * (step.cell.y + std::size_t(g.res.y) * step.cell.z)]) {
+        for (std::uint32_t t : grid.at(step.cell)) {
             float th, u, v;
             if (!test(ray, t, th, u, v) || std::int32_t(t) == best.triangle) continue;
             if (th < best.t || (th == best.t && std::int32_t(t) < best.triangle)) {
@@ -231,12 +237,13 @@ Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& p
         for (int i = 0; i < kept; ++i) {
             const GridStep& s = ring[(visited - kept + i) % kGridTieCells];
             if (s.t1 >= lo && s.t0 <= hi)
-                lists.push_back(&grid.cells[std::size_t(s.cell.x) + std::size_t(g.res.x) * (s.cell.y + std::size_t(g.res.y) * s.cell.z)]);
+                lists.push_back(&grid.at(s.cell));
         }
         Ray<float> r = ray;
         best = Hit<float>();
         if (visited > kGridTieCells && ring[visited % kGridTieCells].t0 > lo) {
-            for (std::uint32_t t = 0; t < g.triangle_count; ++t) fold_hit(test, r, t, best);   // ties reach further back
+            // The tie range reaches back beyond the ring: every triangle, as brute force.
+            for (std::uint32_t t = 0; t < g.triangle_count; ++t) fold_hit(test, r, t, best);
         } else {
             // Merge the cells' sorted lists: each triangle once, in increasing id.
             std::vector<std::size_t> cursor(lists.size(), 0);

@@ -42,6 +42,8 @@ glm::ivec3 choose_resolution(const Bounds& bounds, std::size_t n, float lambda);
 // The grid over `bounds` (padded a little, so no triangle lies on its outer faces) at resolution `res`.
 GridParams make_grid_params(const Bounds& bounds, glm::ivec3 res, std::size_t triangle_count);
 
+// Cell (x, y, z) is number x + res.x (y + res.y z) (GLSL: grid_cell_index).
+std::size_t grid_cell_index(const GridParams& g, glm::ivec3 cell);
 // The coordinate of the boundary between cells n - 1 and n on axis a (GLSL: grid_boundary).
 float grid_boundary(const GridParams& g, int a, int n);
 // Akenine-Moller's triangle/box overlap (13 separating axes), conservative: touching counts as overlapping.
@@ -53,8 +55,9 @@ bool triangle_overlaps_cell(const GridParams& g, glm::ivec3 cell, glm::vec3 a, g
 
 struct CpuGrid {
     GridParams params;
-    std::vector<std::vector<std::uint32_t>> cells;   // triangle ids per cell, increasing; cell = x + res.x (y + res.y z)
+    std::vector<std::vector<std::uint32_t>> cells;   // triangle ids per cell, increasing (index: grid_cell_index)
     std::size_t pairs() const;
+    const std::vector<std::uint32_t>& at(glm::ivec3 cell) const;
 };
 CpuGrid build_grid(const Scene& scene, glm::ivec3 res);
 

@@ -20,10 +20,6 @@ Scene scene_named(const std::string& name, float time = 0.0f) {
     return flatten(make_builtin_scene(name), options);
 }
 
-std::uint32_t cell_index(const GridParams& g, glm::ivec3 c) {
-    return std::uint32_t(c.x + g.res.x * (c.y + g.res.y * c.z));
-}
-
 // ---------------------------------------------------------------------------------------------------------------
 // Resolution and build.
 
@@ -94,7 +90,7 @@ TEST(GridBuild, ListsAreSortedAndEveryHitPointIsInACellListingItsTriangle) {
                 glm::ivec3 c;
                 for (int a = 0; a < 3; ++a)
                     c[a] = std::clamp(int(std::floor((p[a] - g.lo[a]) / g.cell[a])), 0, g.res[a] - 1);
-                const auto& list = grid.cells[cell_index(g, c)];
+                const auto& list = grid.at(c);
                 ASSERT_TRUE(std::binary_search(list.begin(), list.end(), t)) << name << " triangle " << t;
             }
     }
@@ -215,7 +211,8 @@ Hit<float> brute_force_as_02(const Scene& s, Ray<float> ray) {
     const WatertightRay<float> w(ray.direction);
     for (std::uint32_t t = 0; t < s.triangle_count(); ++t) {
         float th, u, v;
-        if (intersect_watertight(ray, w, s.positions[3 * t], s.positions[3 * t + 1], s.positions[3 * t + 2], th, u, v)) {
+        const glm::vec3 &a = s.positions[3 * t], &b = s.positions[3 * t + 1], &c = s.positions[3 * t + 2];
+        if (intersect_watertight(ray, w, a, b, c, th, u, v)) {
             hit = {th, u, v, std::int32_t(t)};
             ray.tmax = th;
         }

@@ -17,6 +17,7 @@ uint grid_for_each_cell(uint t) {
     for (int z = first.z; z <= last.z; ++z)
         for (int y = first.y; y <= last.y; ++y)
             for (int x = first.x; x <= last.x; ++x)
-                if (grid_triangle_overlaps_cell(ivec3(x, y, z), a, b, c)) grid_visit_cell(t, grid_cell_index(ivec3(x, y, z)), k++);
+                if (grid_triangle_overlaps_cell(ivec3(x, y, z), a, b, c))
+                    grid_visit_cell(t, grid_cell_index(ivec3(x, y, z)), k++);
     return k;
 }
