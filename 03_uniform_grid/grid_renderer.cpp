@@ -84,7 +84,11 @@ void GridRenderer::build(const Scene& scene, const RenderSettings& settings) {
     grid_->build(gpu_scene(), make_grid_params(scene.bounds, res, scene.triangle_count()));
 }
 
-void GridRenderer::bind_grid() const { grid_->bind(); }
+void GridRenderer::bind_grid() const {
+    // needs_grid() follows the pipeline's own rule for which passes run; a traced ray without a grid is a bug.
+    if (!built_) throw std::logic_error("03_uniform_grid: a ray was traced but no grid was built for this frame");
+    grid_->bind();
+}
 
 void GridRenderer::render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) {
     if (grid_options.trace_primary) {
