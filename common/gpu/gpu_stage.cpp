@@ -95,6 +95,7 @@ FrameResult GpuStage::render(const Scene& scene, const RenderSettings& settings)
     std::vector<std::string> programs = s.wavefront.programs();
     for (std::string& p : stage_programs()) programs.push_back(std::move(p));
     result.extra["programs"] = programs;
+    add_stage_stats(result);
 
     if (context_.is_window()) closed_ = !window_.present(context_, result.image, gpu_options.screenshot);
     return result;

@@ -62,6 +62,8 @@ protected:
     virtual bool rasterizes_primary_rays() const { return false; }
     // Programs of the stage's own passes, added to the stats' `programs`.
     virtual std::vector<std::string> stage_programs() const { return {}; }
+    // The stage's own stats (e.g. stage 03's grid), added to result.extra after the frame.
+    virtual void add_stage_stats(FrameResult& /*result*/) {}
 
     // The GL objects every stage uses (created with the first frame, once a context is current).
     GpuScene& gpu_scene();

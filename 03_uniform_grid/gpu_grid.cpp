@@ -1,0 +1,103 @@
+#include "gpu_grid.h"
+
+#include <bit>
+#include <string>
+
+#include "common/gpu/bindings.h"
+#include "common/gpu/gl_check.h"
+#include "common/gpu/storage_limit.h"
+#include "common/scene/gltf_io.h"
+
+namespace rt {
+
+namespace {
+constexpr unsigned kBindingGrid = 24, kBindingOffsets = 28, kBindingKeys = 29, kBindingValues = 30;   // grid_common
+
+void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
+
+void check_fits(std::size_t bytes, std::size_t limit, const std::string& what) {
+    if (bytes > limit)
+        throw SceneError("the grid's " + what + " need " + gpu::describe_bytes(bytes) +
+                         ", beyond this GPU's storage block limit of " + gpu::describe_bytes(limit) +
+                         " (lower --grid-lambda or --grid-res)");
+}
+}  // namespace
+
+GpuGrid::GpuGrid()
+    : count_(gpu::Program::compute("03_uniform_grid/grid_count.comp")),
+      write_(gpu::Program::compute("03_uniform_grid/grid_write.comp")),
+      ranges_(gpu::Program::compute("03_uniform_grid/grid_ranges.comp")),
+      total_(sizeof(std::uint32_t)) {}
+
+void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {
+    params_ = params;
+    const std::size_t limit = gpu::max_storage_block_bytes();
+    const std::size_t cells = params.cell_count, n = params.triangle_count;
+    check_fits(kHeaderBytes + cells * 8, limit, std::to_string(cells) + " cells");
+
+    // The header alone first: the build passes read the geometry from it.
+    grid_.reserve(kHeaderBytes);
+    grid_.upload(&params, sizeof(GridParams));
+    scene.positions().bind(gpu::kBindingPositions);
+    grid_.bind_range(kBindingGrid, 0, kHeaderBytes);
+
+    // 1-2. Count the cells of each triangle, scan the counts to offsets; read back the number of pairs.
+    offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
+    offsets_.bind(kBindingOffsets);
+    count_.dispatch_threads(n);
+    barrier();
+    scan_.exclusive(offsets_, offsets_, n, &total_);
+    pairs_ = total_.download_value<std::uint32_t>();
+    const std::size_t bytes = kHeaderBytes + cells * 8 + pairs_ * 4;
+    check_fits(bytes, limit,
+               std::to_string(cells) + " cells and " + std::to_string(pairs_) + " (cell, triangle) pairs");
+
+    // The whole grid buffer: header, zeroed counters and ranges (cells no pair names stay [0, 0)).
+    grid_.reserve(bytes);
+    grid_.clear_u32(0);
+    grid_.upload(&params, sizeof(GridParams));
+    if (pairs_ == 0) return;
+
+    // 3. Write the pairs.
+    keys_.reserve(pairs_ * sizeof(std::uint32_t));
+    values_.reserve(pairs_ * sizeof(std::uint32_t));
+    scene.positions().bind(gpu::kBindingPositions);
+    grid_.bind_range(kBindingGrid, 0, kHeaderBytes);
+    offsets_.bind(kBindingOffsets);
+    keys_.bind(kBindingKeys);
+    values_.bind(kBindingValues);
+    write_.dispatch_threads(n);
+    barrier();
+
+    // 4. Sort the pairs by cell: only the bits a cell index uses.
+    sort_.sort(keys_, values_, pairs_, unsigned(std::bit_width(std::uint32_t(cells - 1))));
+
+    // 5. Cell ranges, then the triangle ids after them.
+    grid_.bind_range(kBindingGrid, 0, bytes);
+    keys_.bind(kBindingKeys);
+    ranges_.set("grid_pair_count", unsigned(pairs_));
+    ranges_.dispatch_threads(pairs_);
+    values_.copy_to(grid_, pairs_ * 4, 0, kHeaderBytes + cells * 8);
+    barrier();
+}
+
+void GpuGrid::bind() const {
+    grid_.bind_range(kBindingGrid, 0, kHeaderBytes + std::size_t(params_.cell_count) * 8 + pairs_ * 4);
+}
+
+std::vector<std::uint64_t> GpuGrid::traversal_stats() const {
+    const std::vector<std::uint32_t> words = grid_.download<std::uint32_t>(kStatCount, sizeof(GridParams) / 4);
+    std::vector<std::uint64_t> stats(kStatCount / 2);
+    for (std::size_t i = 0; i < stats.size(); ++i) stats[i] = words[2 * i] | std::uint64_t(words[2 * i + 1]) << 32;
+    return stats;
+}
+
+std::vector<std::uint32_t> GpuGrid::cell_ranges() const {
+    return grid_.download<std::uint32_t>(std::size_t(params_.cell_count) * 2, kHeaderBytes / 4);
+}
+
+std::vector<std::uint32_t> GpuGrid::triangles() const {
+    return grid_.download<std::uint32_t>(pairs_, kHeaderBytes / 4 + std::size_t(params_.cell_count) * 2);
+}
+
+}  // namespace rt

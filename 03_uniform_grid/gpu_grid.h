@@ -1,0 +1,59 @@
+// Stage 03's uniform grid, built on the GPU from scratch every frame (Kalojanov & Slusallek 2009, "A Parallel
+// Algorithm for Construction of Uniform Grids"): the sort-based build of the grid data the seeds describe, a list of
+// (cell, triangle) pairs sorted by cell plus a start and size per cell.
+//
+//   1. grid_count.comp   one thread per triangle: how many cells it overlaps (triangle/box test, grid_common.glsl)
+//   2. Scan::exclusive   of the counts: where each triangle's pairs start, and the number of pairs
+//   3. grid_write.comp   each triangle writes its (cell, triangle) pairs
+//   4. RadixSort::sort   the pairs by cell (key_bits = the bits of the cell count); stable, so each cell lists its
+//                        triangles in increasing id
+//   5. grid_ranges.comp  each run of equal cells gives that cell's [begin, end); the sorted triangle ids are
+//                        copied after the ranges, into the one buffer the traversal reads (grid_common.glsl)
+//
+// The grid box comes from the CPU (Scene::bounds, computed when the scene is flattened for the frame), not from a
+// GPU reduction. One read-back per build: the number of pairs (step 2), to size the pair buffers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "common/gpu/buffer.h"
+#include "common/gpu/gpu_scene.h"
+#include "common/gpu/radix_sort.h"
+#include "common/gpu/scan.h"
+#include "common/gpu/shader.h"
+#include "uniform_grid.h"
+
+namespace rt {
+
+class GpuGrid {
+public:
+    GpuGrid();   // needs a current context
+    // Builds the grid over the uploaded scene. Throws SceneError (one line, with the sizes) when the cells or the
+    // pairs would not fit one shader storage block.
+    void build(const gpu::GpuScene& scene, const GridParams& params);
+    // Binds the grid (header, counters, cell ranges, triangle lists) for the traversal (grid.glsl).
+    void bind() const;
+    // The traversal's counters (grid.glsl, GRID_STATS): cleared by build(), read back (waits for the GPU).
+    std::vector<std::uint64_t> traversal_stats() const;
+
+    const GridParams& params() const { return params_; }
+    std::size_t pairs() const { return pairs_; }
+    // Read-backs (stats and tests): [begin, end) per cell, and the triangle ids of all cells.
+    std::vector<std::uint32_t> cell_ranges() const;
+    std::vector<std::uint32_t> triangles() const;
+
+    static constexpr std::size_t kStatCount = 32;   // uints of counters after the header (GRID_STAT_COUNT)
+    static constexpr std::size_t kHeaderBytes = sizeof(GridParams) + kStatCount * 4;
+
+private:
+    GridParams params_;
+    std::size_t pairs_ = 0;
+    gpu::Program count_, write_, ranges_;
+    gpu::Scan scan_;
+    gpu::RadixSort sort_;
+    gpu::Buffer grid_, offsets_, total_, keys_, values_;
+};
+
+}  // namespace rt
