@@ -194,10 +194,11 @@ struct TriangleTest {
     }
 };
 
-// Brute force's fold over some triangles, in increasing id: each hit shrinks tmax for the next.
+// Brute force's fold over some triangles, in increasing id: each hit shrinks tmax for the next, and replaces the
+// kept one only when strictly closer (BruteForceTracer::record).
 void fold_hit(TriangleTest& test, Ray<float>& ray, std::uint32_t t, Hit<float>& hit) {
     float th, u, v;
-    if (test(ray, t, th, u, v)) {
+    if (test(ray, t, th, u, v) && th < hit.t) {
         hit = {th, u, v, std::int32_t(t)};
         ray.tmax = th;
     }
@@ -210,7 +211,7 @@ Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& p
     const GridParams& g = grid.params;
     TriangleTest test{positions, method, WatertightRay<float>(ray.direction)};
     Hit<float> best;
-    float second = std::numeric_limits<float>::infinity();   // the smallest t of another triangle
+    float second = std::numeric_limits<float>::infinity();   // the smallest t of another triangle, > best.t
     GridStep ring[kGridTieCells];                             // the last cells visited
     int visited = 0;
     bool bound = false;
@@ -221,9 +222,9 @@ Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& p
             float th, u, v;
             if (!test(ray, t, th, u, v) || std::int32_t(t) == best.triangle) continue;
             if (th < best.t || (th == best.t && std::int32_t(t) < best.triangle)) {
-                if (best.valid()) second = std::min(second, best.t);
+                if (th < best.t) second = std::min(second, best.t);   // an exact tie is no near tie (see the .h)
                 best = {th, u, v, std::int32_t(t)};
-            } else {
+            } else if (th > best.t) {
                 second = std::min(second, th);
             }
         }

@@ -77,9 +77,12 @@ int walk_grid(const GridParams& g, glm::vec3 o, glm::vec3 d, float tmax,
 //   1. Walk: test each visited cell's triangles with the ray's own tmax, keep the smallest t (ties: lowest id), and
 //      stop once that t lies before the current cell's end by a relative kGridTieRange (every triangle that could
 //      hit at that t or before lies in a visited cell).
-//   2. Near ties: when another triangle hit within kGridTieRange of the best t, brute force's answer depends on its
-//      test order (the watertight test compares t with tmax in scaled form, so hits an ulp apart can swap), so those
-//      triangles are tested again as brute force does: in increasing id, each against the tmax the last hit left.
+//   2. Near ties: brute force keeps a hit only when strictly closer, so at an exactly equal t the lowest id wins
+//      whatever the order, as in phase 1. But when another triangle hit at a different t within kGridTieRange of
+//      the best, brute force's answer depends on its test order: the watertight test compares t with tmax in scaled
+//      form (T < tmax * det) before dividing, so of two hits an ulp apart the later-tested, closer one may be
+//      rejected against the earlier one's tmax. Those triangles are tested again as brute force does: in increasing
+//      id, each against the tmax the last hit left. (Exact ties alone, as on a quad's shared diagonal, skip this.)
 //      They lie in the last few cells visited (a ring of kGridTieCells); when the tie range reaches further back,
 //      every triangle is tested (never seen in practice, but never wrong).
 // grid.glsl's trace_closest is its GLSL twin.

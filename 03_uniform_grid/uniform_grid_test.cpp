@@ -205,16 +205,16 @@ TEST(Dda, RandomRaysFollowTheExactWalkAndNeverReachTheBound) {
 
 // ---------------------------------------------------------------------------------------------------------------
 // The grid's closest hit is brute force's, exactly (the rule grid.glsl follows). Brute force as stage 02 runs it
-// (common/shaders/brute_force.glsl): every triangle in id order, each hit shrinking tmax for the next. (The CPU
-// BruteForceTracer also keeps the earlier hit when a later one passes the test at an equal t; the GPU stages are
-// compared with 02, so the grid follows 02.)
+// (common/shaders/brute_force.glsl, the CPU BruteForceTracer's rule): every triangle in id order, each hit shrinking
+// tmax for the next and kept only when strictly closer (the scaled test may let an equal t through), so at an equal t
+// the lowest id stays.
 Hit<float> brute_force_as_02(const Scene& s, Ray<float> ray) {
     Hit<float> hit;
     const WatertightRay<float> w(ray.direction);
     for (std::uint32_t t = 0; t < s.triangle_count(); ++t) {
         float th, u, v;
         const glm::vec3 &a = s.positions[3 * t], &b = s.positions[3 * t + 1], &c = s.positions[3 * t + 2];
-        if (intersect_watertight(ray, w, a, b, c, th, u, v)) {
+        if (intersect_watertight(ray, w, a, b, c, th, u, v) && th < hit.t) {
             hit = {th, u, v, std::int32_t(t)};
             ray.tmax = th;
         }

@@ -43,15 +43,17 @@ bool grid_intersect(Ray ray, WatertightRay w, uint i, out float t, out float u, 
 //   1. the walk tests each visited cell's triangles with the ray's own tmax and keeps the smallest t (ties: lowest
 //      id); a hit may lie beyond the current cell (its triangle spans cells) where a closer one may wait, so the walk
 //      stops only once the best t lies before the current cell's end (by a relative GRID_TIE_RANGE);
-//   2. when another triangle hit within GRID_TIE_RANGE of the best t, the order of the tests decides between them
-//      (the watertight test compares t with tmax in scaled form): those cells' triangles are tested again in
-//      brute force's order, increasing id, merging the sorted lists of the last few cells visited.
+//   2. an exactly equal t goes to the lowest id in any order (a hit replaces the kept one only when strictly
+//      closer), but when another triangle hit at a different t within GRID_TIE_RANGE of the best, the order of the
+//      tests decides between them (the watertight test compares t with tmax in scaled form, before dividing, so a
+//      closer hit an ulp away may fail against the tmax an earlier one left): those cells' triangles are tested
+//      again in brute force's order, increasing id, merging the sorted lists of the last few cells visited.
 #define GRID_TIE_RANGE 1e-5
 #define GRID_TIE_CELLS 8
 
 void grid_fold_hit(inout Ray ray, WatertightRay wr, uint tri, inout Hit hit) {
     float t, u, v;
-    if (grid_intersect(ray, wr, tri, t, u, v)) {
+    if (grid_intersect(ray, wr, tri, t, u, v) && t < hit.t) {
         ray.tmax = t;
         hit.t = t;
         hit.u = u;
@@ -65,7 +67,7 @@ bool trace_closest(Ray ray, out Hit hit) {
     GridWalk w;
     uint cells = 0u, tests = 0u;
     bool bound_reached = false;
-    float second = RT_INFINITY;   // the smallest t of another triangle
+    float second = RT_INFINITY;   // the smallest t of another triangle, > hit.t (exact ties need no phase 2)
     uint ring_cell[GRID_TIE_CELLS];
     float ring_t0[GRID_TIE_CELLS], ring_t1[GRID_TIE_CELLS];
     const WatertightRay wr = watertight_ray(ray.direction);
@@ -87,12 +89,12 @@ bool trace_closest(Ray ray, out Hit hit) {
                 float t, u, v;
                 if (!grid_intersect(ray, wr, tri, t, u, v) || int(tri) == hit.triangle) continue;
                 if (t < hit.t || (t == hit.t && int(tri) < hit.triangle)) {
-                    if (hit.triangle >= 0) second = min(second, hit.t);
+                    if (t < hit.t) second = min(second, hit.t);
                     hit.t = t;
                     hit.u = u;
                     hit.v = v;
                     hit.triangle = int(tri);
-                } else {
+                } else if (t > hit.t) {
                     second = min(second, t);
                 }
             }

@@ -15,14 +15,17 @@ bool intersect_scene_triangle(Ray ray, WatertightRay w, uint i, out float t, out
 #endif
 }
 
-// Nearest hit: keep the closest so far, shrinking tmax so later triangles must beat it.
+// Nearest hit: keep the closest so far, shrinking tmax so later triangles must beat it. As the CPU's
+// brute_force_tracer.h, a hit replaces the kept one only when strictly closer: the watertight test compares t with
+// tmax before dividing (T_scaled < tmax * det), so rounding may let an equal t through, and without the check a
+// later triangle would take the tie. With it, ties at equal t go to the lowest triangle id (hit starts at t = +inf).
 bool trace_closest(Ray ray, out Hit hit) {
     hit = no_hit();
     const WatertightRay w = watertight_ray(ray.direction);
     const uint n = rt_triangle_count;
     for (uint i = 0u; i < n; ++i) {
         float t, u, v;
-        if (intersect_scene_triangle(ray, w, i, t, u, v)) {
+        if (intersect_scene_triangle(ray, w, i, t, u, v) && t < hit.t) {
             ray.tmax = t;
             hit.t = t;
             hit.u = u;

@@ -85,14 +85,15 @@ void main() {
     e.ray = wf_make_ray(ray.origin, ray.direction, RT_INFINITY, vec3(1.0), pixel, 0u, WF_KIND_PRIMARY, 1u, 0u);
 
     // Brute force over the candidates, in id order as brute_force.glsl: a hit must be strictly closer than the
-    // closest so far (the test's t < ray.tmax), so at an equal t the lowest id stays.
+    // closest so far (checked again after the test, whose scaled t < tmax may round an equal t through), so at an
+    // equal t the lowest id stays.
     uint ids[9];
     const uint n = neighbourhood_triangles(p, ids);
     for (uint k = 0u; k < n; ++k) {
         vec3 a, b, c;
         load_triangle(ids[k], a, b, c);
         float t, u, v;
-        if (intersect_triangle(RT_INTERSECT_METHOD, ray, a, b, c, t, u, v)) {
+        if (intersect_triangle(RT_INTERSECT_METHOD, ray, a, b, c, t, u, v) && (e.triangle < 0 || t < e.t)) {
             ray.tmax = t;
             e.triangle = int(ids[k]);
             e.t = t;
