@@ -254,5 +254,24 @@ TEST(GridTraversal, ClosestHitEqualsBruteForceOnRaysAimedAtVerticesAndEdges) {
     }
 }
 
+TEST(GridTraversal, AnExactTieGoesToTheLowestIdWithoutTheNearTiePhase) {
+    // Triangles 0 and 1 are the same triangle, listed twice: the ray hits both at exactly the same t.
+    Scene s;
+    s.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    s.material_ids = {0, 0};
+    s.bounds.add({-1, -1, -1});
+    s.bounds.add({1, 1, 1});
+    const CpuGrid grid = build_grid(s, {1, 1, 1});
+    Ray<float> ray;
+    ray.origin = {0.1f, 0.2f, -3};
+    ray.direction = {0, 0, 1};
+    GridTraceCount count;
+    const Hit<float> got = grid_closest_hit(grid, s.positions, ray, IntersectMethod::Watertight, &count);
+    EXPECT_EQ(got.triangle, 0);
+    EXPECT_EQ(got.t, brute_force_as_02(s, ray).t);
+    EXPECT_EQ(brute_force_as_02(s, ray).triangle, 0);
+    EXPECT_EQ(count.tests, 2u);   // the walk's 2 tests only: no retest in brute force's order
+}
+
 }  // namespace
 }  // namespace rt
