@@ -2,10 +2,11 @@
 // threads: the yardstick bench_grid holds stage 03's Mrays/s against. Benchmark-only: built when CMake finds Embree
 // (scripts/setup --bench installs it).
 //
-//     embree_rays --scene SPEC --hits FILE [--time SECONDS] [--repeat N]
+//     embree_rays --scene SPEC --hits FILE [--time SECONDS] [--repeat N] [--skip-primary]
 //
 // SPEC is what the stages take (builtin:NAME or a .gltf/.glb); --time must be the dumped frame's (frame / fps), so
-// the triangles and lights are the same. Closest-hit records (primary, reflection, refraction) are traced with
+// the triangles and lights are the same. --skip-primary drops the primary records (a stage that rasterized its
+// primaries records them but traced none). Closest-hit records (primary, reflection, refraction) are traced with
 // rtcIntersect1 over (0, inf), like the stages. The dump does not store a shadow ray's tmax, so it is rebuilt the
 // way common/trace/whitted.h sets it: the distance from the ray's origin to the record's light (infinite for a
 // directional light); shadow records are traced with rtcOccluded1. Only tracing is timed, best of --repeat runs.
@@ -114,7 +115,7 @@ void trace_all(RTCScene scene, const std::vector<rt::HitRecord>& records, const 
 }
 
 int usage(const char* message) {
-    std::fprintf(stderr, "embree_rays: error: %s\nusage: embree_rays --scene SPEC --hits FILE [--time S] [--repeat N]\n",
+    std::fprintf(stderr, "embree_rays: error: %s\nusage: embree_rays --scene SPEC --hits FILE [--time S] [--repeat N] [--skip-primary]\n",
                  message);
     return 2;
 }
@@ -125,8 +126,13 @@ int main(int argc, char** argv) {
     std::string spec, hits_path;
     float time = 0.0f;
     int repeat = 5;
+    bool skip_primary = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        if (arg == "--skip-primary") {
+            skip_primary = true;
+            continue;
+        }
         if (i + 1 >= argc) return usage(("missing value for " + arg).c_str());
         if (arg == "--scene") spec = argv[++i];
         else if (arg == "--hits") hits_path = argv[++i];
@@ -142,6 +148,10 @@ int main(int argc, char** argv) {
     try {
         scene = load_frame(spec, time);
         records = rt::read_hit_file(hits_path);
+        if (skip_primary)
+            std::erase_if(records, [](const rt::HitRecord& r) {
+                return rt::HitRecordKind(r.kind_light & 0xff) == rt::HitRecordKind::Primary;
+            });
         for (const rt::HitRecord& r : records)
             tfar.push_back(rt::HitRecordKind(r.kind_light & 0xff) == rt::HitRecordKind::Shadow
                                ? shadow_tmax(r, scene)
@@ -177,8 +187,8 @@ int main(int argc, char** argv) {
                 scene.triangle_count(), RTC_VERSION_STRING, build_ms);
     std::printf("embree_rays: %zu rays (%zu closest, %zu shadow), %u threads on %s, best of %d: %.3f ms\n",
                 records.size(), closest, shadow, threads, rt::cpu_model_name().c_str(), repeat, best_ms);
-    std::printf("embree_rays: agreement with the dump: closest %.3f%%, shadow %.3f%%\n", percent(closest_same, closest),
-                percent(shadow_same, shadow));
+    std::printf("embree_rays: agreement with the dump: closest %zu/%zu (%.3f%%), shadow %zu/%zu (%.3f%%)\n", closest_same,
+                closest, percent(closest_same, closest), shadow_same, shadow, percent(shadow_same, shadow));
     std::printf("mrays_per_s %.3f\n", best_ms > 0.0 ? double(records.size()) / (best_ms * 1e3) : 0.0);
 
     rtcReleaseScene(rtc_scene);
