@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "common/gpu/gbuffer.h"
 #include "common/gpu/gpu_stage.h"
 
 namespace rt {
@@ -24,9 +23,6 @@ protected:
     void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
     bool rasterizes_primary_rays() const override { return true; }
     std::vector<std::string> stage_programs() const override { return {"raster/primary_hits.comp"}; }
-
-private:
-    std::unique_ptr<gpu::GBuffer> gbuffer_;   // created with the first frame (needs the context)
 };
 
 }  // namespace rt

@@ -96,14 +96,7 @@ void GridRenderer::render_sample(const Scene& scene, const RenderSettings& setti
         wavefront().trace_camera_sample(offset);
         return;
     }
-    if (!gbuffer_) gbuffer_ = std::make_unique<gpu::GBuffer>();
-    {
-        auto raster = timer().scope("raster");
-        gbuffer_->render(gpu_scene(), scene.camera, scene.bounds, settings.width, settings.height, offset);
-        wavefront().record_pass("gbuffer");
-    }
-    gpu_scene().bind();
-    gbuffer_->shade_sample(wavefront(), offset);
+    rasterize_and_shade_sample(scene, settings, offset);
 }
 
 std::vector<std::string> GridRenderer::stage_programs() const {

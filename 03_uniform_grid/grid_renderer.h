@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "common/gpu/gbuffer.h"
 #include "common/gpu/gpu_stage.h"
 #include "gpu_grid.h"
 
@@ -44,7 +43,6 @@ private:
     void bind_grid() const;
 
     std::unique_ptr<GpuGrid> grid_;           // created with the first frame that needs it (needs the context)
-    std::unique_ptr<gpu::GBuffer> gbuffer_;
     bool built_ = false;
     float lambda_used_ = kDefaultGridLambda;   // lambda after fitting the cells into the storage limit
 };

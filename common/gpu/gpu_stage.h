@@ -53,10 +53,8 @@ protected:
     // The stage's acceleration structure over the uploaded scene (gpu_scene()); time its passes with
     // timer().scope("build").
     virtual void build(const Scene& scene, const RenderSettings& settings);
-    // One sample through `offset` in each pixel (0.5, 0.5 = the centre): the primary hits, then
-    // wavefront().shade_sample(primary_pass) (or GBuffer::shade_sample), or wavefront().trace_camera_sample(offset)
-    // for both. Time the stage's own passes
-    // with timer().scope("raster"), ...
+    // One sample through `offset` in each pixel (0.5, 0.5 = the centre): rasterize_and_shade_sample() for
+    // rasterized primary hits, or wavefront().trace_camera_sample(offset) to trace them through the traversal.
     virtual void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) = 0;
     // True when the primary rays are rasterized, not traced (rays.rasterized, and left out of mrays_per_s).
     virtual bool rasterizes_primary_rays() const { return false; }
@@ -66,6 +64,9 @@ protected:
     virtual void add_stage_stats(FrameResult& /*result*/) {}
 
     // The GL objects every stage uses (created with the first frame, once a context is current).
+    // Rasterized primary visibility (02, 03 by default, 04, 05): this sample's G-buffer (timed as "raster"), whose
+    // pixels the pipeline then shades as primary hits before tracing everything after them.
+    void rasterize_and_shade_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset);
     GpuScene& gpu_scene();
     Wavefront& wavefront();
     GpuTimer& timer();
