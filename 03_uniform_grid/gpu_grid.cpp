@@ -11,7 +11,7 @@
 namespace rt {
 
 namespace {
-constexpr unsigned kBindingGrid = 24, kBindingOffsets = 28, kBindingKeys = 29, kBindingValues = 30;   // grid_common
+constexpr unsigned kBindingGrid = 24, kBindingChunks = 27, kBindingOffsets = 28, kBindingKeys = 29, kBindingValues = 30;   // grid_common
 
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
@@ -24,7 +24,8 @@ void check_fits(std::size_t bytes, std::size_t limit, const std::string& what) {
 }  // namespace
 
 GpuGrid::GpuGrid()
-    : count_(gpu::Program::compute("03_uniform_grid/grid_count.comp")),
+    : chunks_(gpu::Program::compute("03_uniform_grid/grid_chunks.comp")),
+      count_(gpu::Program::compute("03_uniform_grid/grid_count.comp")),
       write_(gpu::Program::compute("03_uniform_grid/grid_write.comp")),
       ranges_(gpu::Program::compute("03_uniform_grid/grid_ranges.comp")),
       total_(sizeof(std::uint32_t)) {}
@@ -41,12 +42,31 @@ void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {
     scene.positions().bind(gpu::kBindingPositions);
     grid_.bind_range(kBindingGrid, 0, kHeaderBytes);
 
-    // 1-2. Count the cells of each triangle, scan the counts to offsets; read back the number of pairs.
+    // 1. Chunks of each triangle's box, scanned to where each triangle's chunks start. The boxes' cells in all bound
+    //    the chunks and the pairs: below 2^32, no 32-bit count or offset of the build can wrap.
     offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
     offsets_.bind(kBindingOffsets);
-    count_.dispatch_threads(n);
+    chunk_pairs_.reserve(2 * sizeof(std::uint32_t));
+    chunk_pairs_.clear_u32(0);
+    chunk_pairs_.bind(kBindingChunks);
+    chunks_.dispatch_threads(n);
     barrier();
+    const std::vector<std::uint32_t> box_cells = chunk_pairs_.download<std::uint32_t>(2);
+    if (box_cells[1] != 0)
+        throw SceneError("the grid's " + std::to_string(cells) + " cells are too many for the scene's " +
+                         std::to_string(n) + " triangles: their bounding boxes cover more than 2^32 cells in all " +
+                         "(lower --grid-lambda or --grid-res)");
     scan_.exclusive(offsets_, offsets_, n, &total_);
+    const std::size_t chunks = total_.download_value<std::uint32_t>();
+    check_fits(chunks * 4, limit, std::to_string(chunks) + " build chunks");
+
+    // 2. Count the cells of each chunk, scan the counts to where each chunk's pairs start; read back the pairs.
+    chunk_pairs_.reserve(std::max<std::size_t>(chunks, 2) * sizeof(std::uint32_t));
+    chunk_pairs_.bind(kBindingChunks);
+    count_.set("grid_chunk_count", unsigned(chunks));
+    count_.dispatch_threads(chunks);
+    barrier();
+    scan_.exclusive(chunk_pairs_, chunk_pairs_, chunks, &total_);
     pairs_ = total_.download_value<std::uint32_t>();
     const std::size_t bytes = kHeaderBytes + cells * 8 + pairs_ * 4;
     check_fits(bytes, limit,
@@ -64,9 +84,11 @@ void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {
     scene.positions().bind(gpu::kBindingPositions);
     grid_.bind_range(kBindingGrid, 0, kHeaderBytes);
     offsets_.bind(kBindingOffsets);
+    chunk_pairs_.bind(kBindingChunks);
     keys_.bind(kBindingKeys);
     values_.bind(kBindingValues);
-    write_.dispatch_threads(n);
+    write_.set("grid_chunk_count", unsigned(chunks));
+    write_.dispatch_threads(chunks);
     barrier();
 
     // 4. Sort the pairs by cell: only the bits a cell index uses.

@@ -2,16 +2,19 @@
 // Algorithm for Construction of Uniform Grids"): the sort-based build of the grid data the seeds describe, a list of
 // (cell, triangle) pairs sorted by cell plus a start and size per cell.
 //
-//   1. grid_count.comp   one thread per triangle: how many cells it overlaps (triangle/box test, grid_common.glsl)
-//   2. Scan::exclusive   of the counts: where each triangle's pairs start, and the number of pairs
-//   3. grid_write.comp   each triangle writes its (cell, triangle) pairs
+//   1. grid_chunks.comp  one thread per triangle: how many chunks of 512 cells its bounding box has; a scan of them
+//                        says where each triangle's chunks start (grid_build.glsl: why a triangle is split)
+//   2. grid_count.comp   one thread per chunk: how many of its cells the triangle overlaps (triangle/box test,
+//                        grid_common.glsl); Scan::exclusive of the counts: where each chunk's pairs start
+//   3. grid_write.comp   each chunk writes its (cell, triangle) pairs
 //   4. RadixSort::sort   the pairs by cell (key_bits = the bits of the cell count); stable, so each cell lists its
 //                        triangles in increasing id
 //   5. grid_ranges.comp  each run of equal cells gives that cell's [begin, end); the sorted triangle ids are
 //                        copied after the ranges, into the one buffer the traversal reads (grid_common.glsl)
 //
 // The grid box comes from the CPU (Scene::bounds, computed when the scene is flattened for the frame), not from a
-// GPU reduction. One read-back per build: the number of pairs (step 2), to size the pair buffers.
+// GPU reduction. Three read-backs per build, to size the buffers: the boxes' cells in all and the number of chunks
+// (step 1), the number of pairs (step 2).
 #pragma once
 
 #include <cstddef>
@@ -50,10 +53,10 @@ public:
 private:
     GridParams params_;
     std::size_t pairs_ = 0;
-    gpu::Program count_, write_, ranges_;
+    gpu::Program chunks_, count_, write_, ranges_;
     gpu::Scan scan_;
     gpu::RadixSort sort_;
-    gpu::Buffer grid_, offsets_, total_, keys_, values_;
+    gpu::Buffer grid_, offsets_, chunk_pairs_, total_, keys_, values_;
 };
 
 }  // namespace rt

@@ -54,6 +54,19 @@ TEST(GpuGrid, EqualsTheCpuGridCellByCell) {
     }
 }
 
+// The floor quad of spheres:450 spans about 57,000 of the 239x8x239 cells: far more than one shader invocation may
+// loop over on llvmpipe (65,535 iterations in all), so the build must split a triangle's cells across invocations.
+TEST(GpuGrid, EqualsTheCpuGridOnALargeFlatGridUnderAWideQuad) {
+    const Scene s = scene_at("spheres:450");
+    expect_same_grid(s, choose_resolution(s.bounds, s.triangle_count(), kDefaultGridLambda), "spheres:450");
+}
+
+// One triangle over a whole 1024x1024x1 grid (a million cells, 2,048 build chunks).
+TEST(GpuGrid, EqualsTheCpuGridForOneTriangleOverAMillionCells) {
+    const Scene s = scene_at("spheres:1");
+    expect_same_grid(s, {1024, 1, 1024}, "spheres:1 on 1024x1x1024");
+}
+
 TEST(GpuGrid, EqualsTheCpuGridOnFramesOfTheDynamicScene) {
     for (float time : {0.0f, 0.25f, 0.5f, 1.75f}) {
         const Scene s = scene_at("dynamic", time);

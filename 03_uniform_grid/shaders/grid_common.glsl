@@ -7,10 +7,12 @@
 //   header      the geometry (GridParams in uniform_grid.h), then 32 uints of the traversal's counters (GRID_STATS)
 //   grid_data   per cell c: [begin, end) at 2c, 2c + 1, indices into the triangle lists that follow the ranges, at
 //               2 * grid_cell_count: triangle ids, cell after cell, increasing within a cell (the sorted pairs)
-// The build passes use bindings 28..30 for the counts/offsets, the pair keys (cells) and pair values (triangles).
+// The build passes (grid_build.glsl) use bindings 27..30: per-chunk counts/offsets, per-triangle counts/offsets, the
+// pair keys (cells) and pair values (triangles).
 #include "bindings.glsl"
 
 #define GRID_BINDING 24
+#define GRID_BINDING_CHUNKS 27
 #define GRID_BINDING_OFFSETS 28
 #define GRID_BINDING_KEYS 29
 #define GRID_BINDING_VALUES 30
