@@ -6,6 +6,7 @@
 #include <cstring>
 #include <random>
 
+#include "01_naive/naive_renderer.h"
 #include "02_raster_hybrid/hybrid_renderer.h"
 #include "common/gpu/glsl_test_harness.h"
 #include "common/gpu/gpu_scene.h"
@@ -14,6 +15,7 @@
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "dda_cases.h"
+#include "tests/hit_compare.h"
 #include "gpu_grid.h"
 #include "grid_renderer.h"
 
@@ -244,6 +246,26 @@ TEST(GridRenderer, TracedPrimaryRaysGiveBruteForcesFrame) {
         EXPECT_GT(grid.extra["grid"]["traversal"]["primary"]["rays"], 0);
         EXPECT_EQ(grid.extra["grid"]["loop_bound_reached"], 0);
     }
+}
+
+// The large flat grid whose floor quad the build once cut short on llvmpipe (GpuGrid test above): every traced ray
+// finds what stage 01's brute force finds, floor included. (Its 100,802 triangles are beyond what one GPU
+// invocation may loop over on llvmpipe, so the reference is the CPU's brute force, not brute_force.glsl.)
+TEST(GridRenderer, TracedRaysOfALargeFlatGridHitWhatStage01Hits) {
+    gpu::test_context();
+    const Scene s = scene_at("spheres:450");
+    RenderSettings settings = small_settings(s);
+    settings.width = 32;
+    settings.height = 24;
+    GridOptions options;
+    options.trace_primary = true;
+    const FrameResult grid = render_grid(s, settings, options);
+    NaiveRenderer stage01;
+    const HitComparison c = compare_hits(grid.hits, stage01.render(s, settings).hits, {});
+    EXPECT_TRUE(c.passed({})) << c.report({});
+    EXPECT_EQ(c.count_a[0], 32u * 24u);
+    EXPECT_GT(c.compared, 0u);
+    EXPECT_EQ(grid.extra["grid"]["loop_bound_reached"], 0);
 }
 
 TEST(GridRenderer, AHeuristicGridTooLargeForTheStorageLimitLowersLambda) {
