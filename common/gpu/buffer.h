@@ -82,6 +82,7 @@ enum CounterIndex : unsigned {
     kCounterReflectionRays = 2,
     kCounterRefractionRays = 3,
     kCounterIntersectionTests = 4,
+    kCounterLoopsCut = 5,          // invocations whose loops the driver ended early (wavefront.glsl)
     kCounterStageFirst = 8,
 };
 

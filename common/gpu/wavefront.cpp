@@ -188,6 +188,7 @@ void Wavefront::set_uniforms(const Program& p) const {
     p.set("wf_offset", int(settings_.offset));        // RT_OFFSET_EPSILON = 0, RT_OFFSET_ROBUST = 1, as OffsetMethod
     p.set("wf_epsilon", settings_.epsilon);
     p.set("wf_image_size", glm::ivec2(settings_.width, settings_.height));
+    p.set("wf_loop_probe", 2u);   // wf_check_loop_budget()
 }
 
 void Wavefront::record_pass(const std::string& name) {
@@ -473,6 +474,13 @@ Image Wavefront::finish_frame(RayCounters& counters) {
         for (std::size_t i = 0; i < count; ++i)
             image.pixels[first + i] = glm::vec3(sums[i]) / float(std::max(samples_, 1));
     }
+    const std::vector<std::uint64_t> all = counters_.read();
+    if (all[kCounterLoopsCut] != 0)
+        throw std::runtime_error(
+            "the GL driver ended the loops of " + std::to_string(all[kCounterLoopsCut]) +
+            " shader invocations early, so this frame would be wrong: Mesa's llvmpipe stops an invocation after " +
+            "65,535 loop iterations (docs/gpu.md, \"Known limit\"); render a smaller scene, or use a stage with an " +
+            "acceleration structure or a hardware GPU");
     counters = counters_.ray_counters();
     // Primary rays are one per pixel and sample, whether the stage rasterized or traced them.
     counters.rays[int(RayKind::Primary)] = std::uint64_t(pixels_) * std::uint64_t(samples_);

@@ -446,5 +446,30 @@ TEST(StorageLimit, ImageBeyondTheLimitIsRefusedWithAClearError) {
     }
 }
 
+// llvmpipe ends an invocation's loops after 65,535 iterations in all; brute force over spheres:300's 67,202
+// triangles loops longer for each shadow ray. The frame must then be refused with a message, never returned with
+// rays that silently missed (wf_check_loop_budget). On a driver without the limit the same frame renders.
+TEST(LoopBudget, AFrameWhoseLoopsTheDriverCutsShortIsRefusedNotWrong) {
+    gpu::test_context();
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool llvmpipe = renderer && std::string(renderer).find("llvmpipe") != std::string::npos;
+    const Scene scene = builtin("spheres:300", 16, 12);
+    ASSERT_GT(scene.triangle_count(), 65535u);
+    RenderSettings settings = settings_for(scene, 16, 12);
+    if (llvmpipe) {
+        try {
+            render_hybrid(scene, settings, kBruteForce);
+            FAIL() << "a frame whose loops llvmpipe cut short was returned";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("65,535 loop iterations"), std::string::npos) << e.what();
+        }
+    } else {
+        EXPECT_GT(render_hybrid(scene, settings, kBruteForce).stats.counters.intersection_tests, 0u);
+    }
+    // Within the budget the probe stays silent: the whitted scene renders (every other test renders too).
+    const Scene small = builtin("whitted", 16, 12);
+    EXPECT_NO_THROW(render_hybrid(small, settings_for(small, 16, 12), kBruteForce));
+}
+
 }  // namespace
 }  // namespace rt

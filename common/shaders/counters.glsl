@@ -9,6 +9,7 @@
 #define RT_COUNTER_REFLECTION_RAYS 2u
 #define RT_COUNTER_REFRACTION_RAYS 3u
 #define RT_COUNTER_INTERSECTION_TESTS 4u
+#define RT_COUNTER_LOOPS_CUT 5u           // invocations whose loops the driver cut short (wavefront.glsl)
 #define RT_COUNTER_STAGE_FIRST 8u
 
 layout(std430, binding = RT_BINDING_COUNTERS) buffer RtCounters { uint rt_counters[]; };

@@ -106,4 +106,5 @@ void main() {
     rt_counter_add(RT_COUNTER_SHADOW_RAYS, shadow_rays);
     rt_counter_add(RT_COUNTER_REFLECTION_RAYS, reflection_rays);
     rt_counter_add(RT_COUNTER_REFRACTION_RAYS, refraction_rays);
+    wf_check_loop_budget();
 }

@@ -16,4 +16,5 @@ void main() {
     const WavefrontRay r = wf_rays_in[wf_input_first + i];
     wf_occluded[i] = trace_any(wf_ray(r)) ? 1u : 0u;
     wf_flush_tests(r.pixel);
+    wf_check_loop_budget();
 }

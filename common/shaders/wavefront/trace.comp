@@ -30,4 +30,5 @@ void main() {
     }
     wf_trace_results[i] = result;
     wf_flush_tests(r.pixel);
+    wf_check_loop_budget();
 }

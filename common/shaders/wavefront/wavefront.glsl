@@ -175,6 +175,20 @@ void wf_accumulate(uint pixel, vec3 c) {
     wf_add_fixed(base + 6u, c.b);
 }
 
+// Mesa's llvmpipe ends the loops of one shader invocation silently once they have run 65,535 iterations in all
+// (docs/gpu.md, "Known limit"); after that every loop runs its body once and stops. An invocation that looped more
+// (a brute-force ray over 100,000 triangles) would give a wrong answer with no error, so each pass that runs a
+// traversal or a loop over lights ends with wf_check_loop_budget(): a loop of wf_loop_probe (2, a uniform, so the
+// compiler cannot unroll it) iterations runs only once when the budget is spent, and the invocation is then counted
+// in RT_COUNTER_LOOPS_CUT. Wavefront::finish_frame refuses a frame with any such invocation. On drivers without the
+// limit the probe always runs twice.
+uniform uint wf_loop_probe;
+void wf_check_loop_budget() {
+    uint runs = 0u;
+    for (uint i = 0u; i < wf_loop_probe; ++i) ++runs;
+    if (runs != wf_loop_probe) rt_counter_add(RT_COUNTER_LOOPS_CUT, 1u);
+}
+
 // Counting ray/triangle tests: a traversal calls wf_count_tests(n) for the tests it makes; each pass adds the
 // thread's total to the global counter once, at its end (one atomic per thread, not per test), and with
 // RECORD_TESTS_PER_PIXEL (--heatmap) to the ray's pixel. Compiled out without COUNT_TESTS (timing runs).
