@@ -2,14 +2,12 @@
 
 namespace rt {
 
-namespace {
-
-// The traversal stage 02 plugs into the wavefront pipeline: every ray against every triangle.
-gpu::Traversal brute_force_traversal() { return {"common/brute_force.glsl", {}, {}}; }
-
-}  // namespace
-
-HybridRenderer::HybridRenderer() : GpuStage(brute_force_traversal()) {}
+// The traversal stage 02 plugs into the wavefront pipeline: every ray against every triangle, in slices of
+// triangles (common/gpu/brute_force_traversal.h). The lambda reads the scene the frame uploaded.
+HybridRenderer::HybridRenderer()
+    : GpuStage({}), brute_force_([this] { return gpu_scene().triangle_count(); }) {
+    set_traversal(brute_force_.traversal());
+}
 HybridRenderer::~HybridRenderer() = default;
 
 void HybridRenderer::render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) {

@@ -1,5 +1,6 @@
 #include "gpu_stage.h"
 
+#include <stdexcept>
 #include <utility>
 
 #include <CLI/CLI.hpp>
@@ -19,6 +20,11 @@ struct GpuStage::Shared {
 };
 
 GpuStage::GpuStage(Traversal traversal) : traversal_(std::move(traversal)) {}
+
+void GpuStage::set_traversal(Traversal traversal) {
+    if (shared_) throw std::logic_error("GpuStage::set_traversal after the first frame");
+    traversal_ = std::move(traversal);
+}
 
 GpuStage::~GpuStage() {
     shared_.reset();   // GL objects go before the context

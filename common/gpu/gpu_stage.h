@@ -68,6 +68,8 @@ protected:
     // pixels the pipeline then shades as primary hits before tracing everything after them.
     void rasterize_and_shade_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset);
     GpuScene& gpu_scene();
+    // Replaces the traversal given to the constructor; only before the first frame (stage 02's refers to a member).
+    void set_traversal(Traversal traversal);
     Wavefront& wavefront();
     GpuTimer& timer();
 

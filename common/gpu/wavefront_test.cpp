@@ -22,6 +22,7 @@
 #include "gbuffer.h"
 #include "gpu_scene.h"
 #include "gpu_test_context.h"
+#include "brute_force_traversal.h"
 #include "wavefront.h"
 
 namespace rt {
@@ -285,94 +286,20 @@ TEST(RadianceSum, ManySamplesOfABrightSceneDoNotOverflow) {
     expect_agrees_with_stage01(bright_scene(LightType::Point, 1e7f, 48, 36), "1e7 cd point light, 8 spp", 1e6f, 8);
 }
 
-// Brute force as a batch traversal: the stage's own passes over the whole queue, one result per ray.
-const char* kBatchClosest = R"(#version 450 core
-#include "wavefront/wavefront.glsl"
-#include "scene.glsl"
-layout(local_size_x = 64) in;
-layout(std430, binding = WF_BINDING_RESULTS) writeonly buffer Results { WavefrontTraceResult results[]; };
-void main() {
-    const uint i = rt_global_index();
-    if (i >= wf_input_count) return;
-    const WavefrontRay r = wf_rays_in[wf_input_first + i];
-    Ray ray = wf_ray(r);
-    WavefrontTraceResult best;
-    best.triangle = -1; best.t = 0.0; best.u = 0.0; best.v = 0.0;
-    for (uint k = 0u; k < rt_triangle_count; ++k) {
-        vec3 a, b, c;
-        load_triangle(k, a, b, c);
-        float t, u, v;
-        if (intersect_triangle(RT_INTERSECT_METHOD, ray, a, b, c, t, u, v)) {
-            ray.tmax = t;
-            best.triangle = int(k); best.t = t; best.u = u; best.v = v;
-        }
-    }
-    results[i] = best;
-    wf_count_tests(rt_triangle_count);
-    wf_flush_tests(r.pixel);
-}
-)";
-const char* kBatchAny = R"(#version 450 core
-#include "wavefront/wavefront.glsl"
-#include "scene.glsl"
-layout(local_size_x = 64) in;
-layout(std430, binding = WF_BINDING_RESULTS) writeonly buffer Results { uint occluded[]; };
-void main() {
-    const uint i = rt_global_index();
-    if (i >= wf_input_count) return;
-    const WavefrontRay r = wf_rays_in[wf_input_first + i];
-    const Ray ray = wf_ray(r);
-    uint hit = 0u, tests = rt_triangle_count;
-    for (uint k = 0u; k < rt_triangle_count && hit == 0u; ++k) {
-        vec3 a, b, c;
-        load_triangle(k, a, b, c);
-        float t, u, v;
-        if (intersect_triangle(RT_INTERSECT_METHOD, ray, a, b, c, t, u, v)) {
-            hit = 1u;
-            tests = k + 1u;
-        }
-    }
-    occluded[i] = hit;
-    wf_count_tests(tests);
-    wf_flush_tests(r.pixel);
-}
-)";
-
-struct BatchBruteForce {
-    gpu::Program closest, any;
-    std::string key;
-    int dispatches = 0;
-    void run(gpu::Program& program, const gpu::BatchTraceInputs& in) {
-        std::string k;
-        for (const auto& [name, value] : in.wavefront.defines()) k += name + "=" + value + ";";
-        if (!program || k != key) {
-            closest = gpu::Program::compute_source("batch_closest", kBatchClosest, in.wavefront.defines());
-            any = gpu::Program::compute_source("batch_any", kBatchAny, in.wavefront.defines());
-            key = k;
-        }
-        in.rays.bind(gpu::kWavefrontBindingRaysIn);
-        in.results.bind(gpu::kWavefrontBindingResults);
-        if (in.tests_per_pixel) in.tests_per_pixel->bind(gpu::kWavefrontBindingTestsPerPixel);
-        in.wavefront.set_uniforms(program);
-        program.set("wf_input_first", unsigned(in.first));
-        program.set("wf_input_count", unsigned(in.count));
-        program.dispatch_threads(in.count);
-        ++dispatches;
-    }
-};
-
-TEST(BatchTraversal, BruteForceBothWaysGivesIdenticalImagesHitsAndCounts) {
-    BatchBruteForce batch;
-    gpu::Traversal traversal = kBruteForce;
-    traversal.trace_batch = [&](const gpu::BatchTraceInputs& in) { batch.run(batch.closest, in); };
-    traversal.shadow_batch = [&](const gpu::BatchTraceInputs& in) { batch.run(batch.any, in); };
+// Brute force as a batch traversal (stage 02's: brute_force_traversal.h), in slices of 7 triangles so every pass
+// takes several dispatches: exactly what one loop over all triangles per ray gives (same hits, ties, counts).
+TEST(BatchTraversal, BruteForceInSlicesGivesIdenticalImagesHitsAndCounts) {
+    std::size_t triangles = 0;
+    gpu::BruteForceTraversal sliced([&] { return triangles; }, 7);
     for (const char* name : {"whitted", "cornell"}) {
         const Scene scene = builtin(name, 64, 48);
+        triangles = scene.triangle_count();
+        ASSERT_GT(triangles, 14u) << name;
         const RenderSettings settings = settings_for(scene, 64, 48);
         const FrameResult per_ray = render_hybrid(scene, settings, kBruteForce);
-        const int before = batch.dispatches;
-        const FrameResult batched = render_hybrid(scene, settings, traversal);
-        EXPECT_GT(batch.dispatches, before) << name;
+        const int before = sliced.dispatches();
+        const FrameResult batched = render_hybrid(scene, settings, sliced.traversal());
+        EXPECT_GE(sliced.dispatches() - before, int((triangles + 6) / 7)) << name;
         expect_same_frame(per_ray, batched, true);
     }
 }

@@ -15,15 +15,15 @@ bool intersect_scene_triangle(Ray ray, WatertightRay w, uint i, out float t, out
 #endif
 }
 
-// Nearest hit: keep the closest so far, shrinking tmax so later triangles must beat it. As the CPU's
-// brute_force_tracer.h, a hit replaces the kept one only when strictly closer: the watertight test compares t with
-// tmax before dividing (T_scaled < tmax * det), so rounding may let an equal t through, and without the check a
-// later triangle would take the tie. With it, ties at equal t go to the lowest triangle id (hit starts at t = +inf).
-bool trace_closest(Ray ray, out Hit hit) {
-    hit = no_hit();
-    const WatertightRay w = watertight_ray(ray.direction);
-    const uint n = rt_triangle_count;
-    for (uint i = 0u; i < n; ++i) {
+// Nearest hit among triangles [first, end): keep the closest so far, shrinking tmax so later triangles must beat
+// it. As the CPU's brute_force_tracer.h, a hit replaces the kept one only when strictly closer: the watertight test
+// compares t with tmax before dividing (T_scaled < tmax * det), so rounding may let an equal t through, and without
+// the check a later triangle would take the tie. With it, ties at equal t go to the lowest triangle id (hit starts at
+// t = +inf). `hit` may hold the closest of earlier triangles (a sliced traversal, brute_force_slice.comp): the
+// result is the same as one loop over all of them.
+void closest_hit_among(Ray ray, WatertightRay w, uint first, uint end, inout Hit hit) {
+    if (hit.triangle >= 0) ray.tmax = hit.t;
+    for (uint i = first; i < end; ++i) {
         float t, u, v;
         if (intersect_scene_triangle(ray, w, i, t, u, v) && t < hit.t) {
             ray.tmax = t;
@@ -33,21 +33,29 @@ bool trace_closest(Ray ray, out Hit hit) {
             hit.triangle = int(i);
         }
     }
-    wf_count_tests(n);
-    return hit.triangle >= 0;
+    wf_count_tests(end - first);
 }
 
-// Shadow rays only need to know whether anything blocks the light: stop at the first hit.
-bool trace_any(Ray ray) {
-    const WatertightRay w = watertight_ray(ray.direction);
-    const uint n = rt_triangle_count;
-    for (uint i = 0u; i < n; ++i) {
+// Whether any triangle of [first, end) is hit: shadow rays only need to know whether anything blocks the light, so
+// stop at the first hit (and count only the tests made).
+bool any_hit_among(Ray ray, WatertightRay w, uint first, uint end) {
+    for (uint i = first; i < end; ++i) {
         float t, u, v;
         if (intersect_scene_triangle(ray, w, i, t, u, v)) {
-            wf_count_tests(i + 1u);   // count only the tests made
+            wf_count_tests(i + 1u - first);
             return true;
         }
     }
-    wf_count_tests(n);
+    wf_count_tests(end - first);
     return false;
 }
+
+// The per-ray traversal: one loop over every triangle. (Mesa's llvmpipe cuts an invocation's loops short after
+// 65,535 iterations, so on llvmpipe this serves scenes below that; stage 02 traces in slices, brute_force_slice.comp.)
+bool trace_closest(Ray ray, out Hit hit) {
+    hit = no_hit();
+    closest_hit_among(ray, watertight_ray(ray.direction), 0u, rt_triangle_count, hit);
+    return hit.triangle >= 0;
+}
+
+bool trace_any(Ray ray) { return any_hit_among(ray, watertight_ray(ray.direction), 0u, rt_triangle_count); }

@@ -1,0 +1,84 @@
+// Stage 02 on a scene beyond what one GPU invocation may loop over on llvmpipe (65,535 iterations in all; docs/gpu.md,
+// "Known limit"): its brute force traces in slices of triangles (common/gpu/brute_force_traversal.h), so every
+// secondary ray still finds exactly what stage 01's brute force finds, with the bounds of the hits tests
+// (within 64 ulps, as tests/hits.cmake compares 02 with 01).
+#include <gtest/gtest.h>
+
+#include "01_naive/naive_renderer.h"
+#include "common/gpu/brute_force_traversal.h"
+#include "common/gpu/gpu_stage.h"
+#include "common/gpu/gpu_test_context.h"
+#include "common/scene/builtin_scenes.h"
+#include "common/scene/effects.h"
+#include "hybrid_renderer.h"
+#include "tests/hit_compare.h"
+
+namespace rt {
+namespace {
+
+Scene spheres_300() {
+    FlattenOptions options;
+    options.aspect = 4.0f / 3.0f;
+    return flatten(make_builtin_scene("spheres:300"), options);
+}
+
+RenderSettings small_settings(const Scene& scene, int width, int height) {
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.effects = analyze_effects(scene);
+    settings.record_hits = true;
+    return settings;
+}
+
+// Stage 02's traversal tracing the camera rays too (closest hits through the slices), as stages 03-05 may.
+class TracedBruteForce : public gpu::GpuStage {
+public:
+    TracedBruteForce() : GpuStage({}), brute_force_([this] { return gpu_scene().triangle_count(); }) {
+        set_traversal(brute_force_.traversal());
+    }
+
+protected:
+    void render_sample(const Scene&, const RenderSettings&, glm::vec2 offset) override {
+        gpu_scene().bind();
+        wavefront().trace_camera_sample(offset);
+    }
+
+private:
+    gpu::BruteForceTraversal brute_force_;
+};
+
+void expect_hits_like_stage01(const FrameResult& a, const Scene& scene, const RenderSettings& settings,
+                              double primary_fraction) {
+    NaiveRenderer stage01;
+    const FrameResult b = stage01.render(scene, settings);
+    HitCompareOptions bounds;
+    bounds.primary_fraction = primary_fraction;
+    bounds.ray_ulps = 64;
+    bounds.t_ulps = 64;
+    const HitComparison c = compare_hits(a.hits, b.hits, bounds);
+    EXPECT_TRUE(c.passed(bounds)) << c.report(bounds);
+    EXPECT_GT(c.count_a[int(HitRecordKind::Shadow)], 100u);
+}
+
+TEST(BruteForceSlices, TracedRaysOfASceneBeyondOneInvocationsLoopLimitHitWhatStage01Hits) {
+    gpu::test_context();
+    const Scene scene = spheres_300();
+    ASSERT_GT(scene.triangle_count(), 4u * 16384u);   // more than 65,535 and four slices
+    const RenderSettings settings = small_settings(scene, 32, 24);
+    TracedBruteForce traced;
+    expect_hits_like_stage01(traced.render(scene, settings), scene, settings, 0.0);
+}
+
+// Stage 02 itself, with the bounds of tests/hits.cmake (rasterized primaries: up to 0.5% may hit a neighbour across
+// an edge, their trees left out; 6 of 3072 here): every other shadow ray answers as stage 01's.
+TEST(BruteForceSlices, Stage02sShadowRaysOfASceneBeyondOneInvocationsLoopLimitAnswerAsStage01s) {
+    gpu::test_context();
+    const Scene scene = spheres_300();
+    const RenderSettings settings = small_settings(scene, 64, 48);
+    HybridRenderer stage02;
+    expect_hits_like_stage01(stage02.render(scene, settings), scene, settings, 0.005);
+}
+
+}  // namespace
+}  // namespace rt
