@@ -212,7 +212,9 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         if (extra) continue;
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
         if (!path.empty())
-            files.write({"--out", path}, [&](const std::string& file) { write_image_file(file, result.image); });
+            files.write({"--out", path}, [&](const std::string& file) {
+                write_image_file(file, apply_exposure(result.image, settings.exposure));   // display only
+            });
         if (!options.dump_hits.empty())
             files.write({"--dump-hits", frame_path(options.dump_hits, frame, options.frames)},
                         [&](const std::string& file) { write_hit_file(file, result.hits); });
