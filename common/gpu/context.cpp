@@ -97,6 +97,11 @@ std::vector<std::uint8_t> GpuContext::read_window_rgba8(int& width, int& height)
     return impl_->read_window_rgba8(width, height);
 }
 
+WindowInput GpuContext::take_input() { return impl_ ? impl_->take_input() : WindowInput{}; }
+void GpuContext::set_title(const std::string& title) {
+    if (impl_) impl_->set_title(title);
+}
+
 GpuContext create_context(const GpuOptions& options) {
     std::unique_ptr<GpuContext::Impl> impl;
     if (options.window) {
