@@ -1,7 +1,8 @@
 # Tests every GPU stage gets, run as scripts (tests/run_gpu_case.cmake), labelled "gpu" and "gpu-<stage>":
 #   gpu.<stage>.egl_and_osmesa_agree   the two headless backends render the same image (threshold 0)
 #   gpu.<stage>.window_screenshot      under xvfb-run, --window --frames 3 --screenshot opens a GLFW window, renders,
-#                                      saves the frame and exits 0; the screenshot equals the headless image
+#                                      saves the frame and exits 0; the screenshot equals the headless image, also
+#                                      with --exposure -1.5
 #   gpu.<stage>.viewer                 under xvfb-run with xdotool (viewer_session.sh): the window as opened equals the
 #                                      headless image; key 1 turns shadows off (equal to a headless --effects run
 #                                      without shadows, and unlike before); a left drag orbits (the image changes)

@@ -44,6 +44,10 @@ elseif(MODE STREQUAL "window")
     message(FATAL_ERROR "--screenshot wrote nothing")
   endif()
   same_image(${OUT_DIR}/screenshot.png ${OUT_DIR}/headless.png window_vs_headless)
+  # The window shows the exposure the file gets (the display pass on the GPU, the PNG writer on the CPU).
+  render(headless_exposed ${EXE} ${size} --exposure -1.5 --out ${OUT_DIR}/headless_exposed.png)
+  render(window_exposed ${XVFB_RUN} -a ${EXE} ${size} --exposure -1.5 --window --screenshot ${OUT_DIR}/exposed.png)
+  same_image(${OUT_DIR}/exposed.png ${OUT_DIR}/headless_exposed.png window_vs_headless_exposure)
 
 elseif(MODE STREQUAL "viewer")
   # The viewer under synthetic input (viewer_session.sh): a key toggles shadows, a drag orbits, P saves each state.

@@ -128,7 +128,7 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
 
     if (viewer_) {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        closed_ = !viewer_->show(context_, window_, result, settings, ms, gpu_options.screenshot);
+        closed_ = !viewer_->show(context_, window_, s.wavefront, result, settings, ms, gpu_options.screenshot);
     }
     return result;
 }

@@ -110,15 +110,20 @@ void Viewer::handle(const WindowInput& input) {
     }
 }
 
-bool Viewer::show(GpuContext& context, WindowPresenter& presenter, const FrameResult& frame,
-                  const RenderSettings& settings, double frame_ms, const std::string& screenshot) {
+bool Viewer::show(GpuContext& context, WindowPresenter& presenter, const Wavefront& wavefront,
+                  const FrameResult& frame, const RenderSettings& settings, double frame_ms,
+                  const std::string& screenshot) {
     if (max_depth_ < 0) max_depth_ = settings.max_depth;
-    const Image shown = heatmap_ ? make_heatmap(frame.tests_per_pixel, settings.width, settings.height,
-                                                HeatmapScale::Linear).image
-                                 : apply_exposure(frame.image, settings.exposure);
     std::string save = screenshot;
     if (save.empty() && save_next_) save = next_screenshot_name();
-    const bool open = presenter.present(context, shown, save);
+    bool open = true;
+    if (heatmap_)   // the tests per pixel were read back for the false colours (make_heatmap)
+        open = presenter.present(
+            context, make_heatmap(frame.tests_per_pixel, settings.width, settings.height, HeatmapScale::Linear).image, save);
+    else if (settings.exposure.automatic)   // the EV depends on the image's percentile, computed on the CPU
+        open = presenter.present(context, apply_exposure(frame.image, settings.exposure), save);
+    else
+        open = presenter.present_frame(context, wavefront, settings.exposure, save);
     if (save_next_ && screenshot.empty()) say("saved " + save);
     save_next_ = false;
 

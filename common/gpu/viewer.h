@@ -30,10 +30,11 @@ public:
     const Scene& scene_for_frame(const Scene& scene);
     RenderSettings settings_for_frame(const RenderSettings& settings);
 
-    // After the frame: shows it (the image with the exposure applied, or the heatmap), writes the stage, frame time,
-    // Mrays/s and tests per ray into the title, saves the screenshot asked for (`screenshot`, else one the P key
-    // asked for), then takes the input for the next frame. Returns false once the user closed the window.
-    bool show(GpuContext& context, WindowPresenter& presenter, const FrameResult& frame,
+    // After the frame: shows it (the wavefront's image with the exposure applied, straight from the GPU; or the
+    // heatmap), writes the stage, frame time, Mrays/s and tests per ray into the title, saves the screenshot asked
+    // for (`screenshot`, else one the P key asked for), then takes the input for the next frame. Returns false once
+    // the user closed the window.
+    bool show(GpuContext& context, WindowPresenter& presenter, const Wavefront& wavefront, const FrameResult& frame,
               const RenderSettings& settings, double frame_ms, const std::string& screenshot);
 
 private:

@@ -466,6 +466,12 @@ void Wavefront::resolve(std::size_t band) {
     check_gl("wavefront: resolve pass");
 }
 
+std::vector<Wavefront::ImageBand> Wavefront::image_bands() const {
+    std::vector<ImageBand> bands;
+    for (std::size_t b = 0; b < image_bands_.size(); ++b) bands.push_back({image_bands_[b], band_pixels(b).first, band_pixels(b).second});
+    return bands;
+}
+
 Image Wavefront::finish_frame(RayCounters& counters) {
     Image image(settings_.width, settings_.height);
     for (std::size_t band = 0; band < image_bands_.size(); ++band) {

@@ -128,6 +128,17 @@ public:
     // per traced or rasterized ray) and `tests_per_pixel` (record_tests_per_pixel).
     void finish_frame(FrameResult& result);
 
+    // The frame's image where it is, on the GPU (a window shows it without a read-back): band by band, the float
+    // sums over samples() samples (vec4 per pixel) of the pixels [first, first + count), row-major from the top.
+    struct ImageBand {
+        const Buffer& sums;
+        std::size_t first, count;
+    };
+    std::vector<ImageBand> image_bands() const;
+    int samples() const { return samples_; }
+    int width() const { return settings_.width; }
+    int height() const { return settings_.height; }
+
     // The defines the passes were compiled with (effects, RT_INTERSECT_METHOD, COUNT_TESTS, the traversal's).
     const ShaderDefines& defines() const { return defines_; }
     // Programs compiled for this frame's variant, e.g. "wavefront/shade.comp".
