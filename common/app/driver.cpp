@@ -204,6 +204,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         effect_names = settings.effects.names();
         settings.record_hits = !options.dump_hits.empty();
         settings.record_tests_per_pixel = !options.heatmap.empty();
+        settings.need_image = !extra;   // frames past the requested ones are only shown
 
         const auto start = std::chrono::steady_clock::now();
         FrameResult result = renderer.render(scene, settings);

@@ -40,6 +40,8 @@ struct RenderSettings {
     // Diagnostics, off unless asked for (they cost time and memory):
     bool record_hits = false;             // --dump-hits: fill FrameResult::hits with every traced ray
     bool record_tests_per_pixel = false;  // --heatmap: fill FrameResult::tests_per_pixel
+    bool need_image = true;               // false: a frame only a window shows; FrameResult::image may stay empty
+                                          // (GPU stages then leave it on the GPU: no read-back)
 };
 
 struct FrameResult {

@@ -54,6 +54,7 @@ RenderSettings Viewer::settings_for_frame(const RenderSettings& requested) {
     settings.effects.refractions &= !off_.refractions;
     if (max_depth_ >= 0) settings.max_depth = max_depth_;
     if (heatmap_) settings.record_tests_per_pixel = true;
+    if (settings.exposure.automatic) settings.need_image = true;   // its EV comes from the image, on the CPU
     return settings;
 }
 

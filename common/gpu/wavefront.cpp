@@ -473,8 +473,9 @@ std::vector<Wavefront::ImageBand> Wavefront::image_bands() const {
 }
 
 Image Wavefront::finish_frame(RayCounters& counters) {
-    Image image(settings_.width, settings_.height);
-    for (std::size_t band = 0; band < image_bands_.size(); ++band) {
+    Image image;
+    if (settings_.need_image) image = Image(settings_.width, settings_.height);
+    for (std::size_t band = 0; band < image_bands_.size() && settings_.need_image; ++band) {
         const auto [first, count] = band_pixels(band);
         const std::vector<glm::vec4> sums = image_bands_[band].download<glm::vec4>(count);
         for (std::size_t i = 0; i < count; ++i)

@@ -122,7 +122,8 @@ public:
     // the traversal, then shaded as above.
     void trace_camera_sample(glm::vec2 offset);
 
-    // End of the frame: the image (the mean over the samples) and the counters. Waits for the GPU.
+    // End of the frame: the image (the mean over the samples; empty when settings.need_image is false, the image
+    // then stays on the GPU: image_bands()) and the counters. Waits for the GPU.
     Image finish_frame(RayCounters& counters);
     // The same into a FrameResult, with the diagnostics the settings asked for: `hits` (record_hits: one HitRecord
     // per traced or rasterized ray) and `tests_per_pixel` (record_tests_per_pixel).
