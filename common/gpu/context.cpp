@@ -145,7 +145,7 @@ void add_gpu_options(CLI::App& app, GpuOptions& options) {
                    "GL context: auto (EGL hardware device, else EGL surfaceless, else OSMesa), egl, osmesa")
         ->check(CLI::IsMember({"auto", "egl", "osmesa"}))
         ->capture_default_str();
-    auto* window = app.add_flag("--window", options.window, "Show the frames in a GLFW window (not in portable builds)");
+    auto* window = app.add_flag("--window", options.window, "Show the frames in an interactive GLFW viewer window (controls: README.md; not in portable builds)");
     app.add_option("--screenshot", options.screenshot, "Window mode: save what the window shows to FILE")
         ->needs(window);
     app.add_flag("--gl-debug,!--no-gl-debug", options.debug, "GL_KHR_debug output (on by default in debug builds)");
