@@ -204,6 +204,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         effect_names = settings.effects.names();
         settings.record_hits = !options.dump_hits.empty();
         settings.record_tests_per_pixel = !options.heatmap.empty();
+        settings.need_image = !extra;   // frames past the requested ones are only shown
 
         const auto start = std::chrono::steady_clock::now();
         FrameResult result = renderer.render(scene, settings);
@@ -212,7 +213,9 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         if (extra) continue;
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
         if (!path.empty())
-            files.write({"--out", path}, [&](const std::string& file) { write_image_file(file, result.image); });
+            files.write({"--out", path}, [&](const std::string& file) {
+                write_image_file(file, apply_exposure(result.image, settings.exposure));   // display only
+            });
         if (!options.dump_hits.empty())
             files.write({"--dump-hits", frame_path(options.dump_hits, frame, options.frames)},
                         [&](const std::string& file) { write_hit_file(file, result.hits); });

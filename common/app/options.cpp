@@ -81,6 +81,27 @@ void add_shared_options(CLI::App& app, Options& o) {
              "Fresnel reflectance: Schlick's approximation or the exact dielectric formula");
     app.add_option("--cutoff", o.render.cutoff, "Stop a path when its weight is below this in every channel")
         ->capture_default_str()->check(number_in(0, 1));
+    // Display (exposure.h, docs/shading.md "Exposure"): applied to the saved and shown image, never to the lighting.
+    app.add_option_function<std::string>(
+           "--exposure", [&o](const std::string& text) {
+               const ToneCurve curve = o.render.exposure.curve;   // --tone-curve may come first
+               o.render.exposure = parse_exposure(text);
+               o.render.exposure.curve = curve;
+           },
+           "Scale the output by 2^EV (EV in [-20, 20]; 0 = unchanged), or auto: the 99th percentile luminance to 1")
+        ->default_str("0")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                try {
+                    parse_exposure(text);
+                } catch (const std::invalid_argument& e) {
+                    return std::string(e.what());
+                }
+                return std::string();
+            },
+            "EV|auto"));
+    add_enum(app, "--tone-curve", o.render.exposure.curve, {{"none", ToneCurve::None}, {"aces", ToneCurve::Aces}},
+             "After --exposure: none (linear, clips at 1) or aces (filmic shoulder, Narkowicz 2015)");
     app.add_option("--spp", o.render.spp, "Samples per pixel (anti-aliasing)")->capture_default_str()->check(number_in(1, 4096));
 }
 

@@ -12,6 +12,7 @@
 #include "../trace/intersect.h"
 #include "../trace/offset.h"
 #include "../trace/shading.h"
+#include "exposure.h"
 #include "hit_record.h"
 #include "image.h"
 #include "stats.h"
@@ -34,9 +35,13 @@ struct RenderSettings {
     Effects effects;                                     // what to simulate (already resolved from --effects)
     int threads = 0;                                     // 0 = all hardware threads
     bool quiet = false;
+    Exposure exposure;                                   // display only (exposure.h): the driver applies it to the
+                                                         // saved image, a window to what it shows; not to shading
     // Diagnostics, off unless asked for (they cost time and memory):
     bool record_hits = false;             // --dump-hits: fill FrameResult::hits with every traced ray
     bool record_tests_per_pixel = false;  // --heatmap: fill FrameResult::tests_per_pixel
+    bool need_image = true;               // false: a frame only a window shows; FrameResult::image may stay empty
+                                          // (GPU stages then leave it on the GPU: no read-back)
 };
 
 struct FrameResult {

@@ -97,6 +97,11 @@ std::vector<std::uint8_t> GpuContext::read_window_rgba8(int& width, int& height)
     return impl_->read_window_rgba8(width, height);
 }
 
+WindowInput GpuContext::take_input() { return impl_ ? impl_->take_input() : WindowInput{}; }
+void GpuContext::set_title(const std::string& title) {
+    if (impl_) impl_->set_title(title);
+}
+
 GpuContext create_context(const GpuOptions& options) {
     std::unique_ptr<GpuContext::Impl> impl;
     if (options.window) {
@@ -140,7 +145,7 @@ void add_gpu_options(CLI::App& app, GpuOptions& options) {
                    "GL context: auto (EGL hardware device, else EGL surfaceless, else OSMesa), egl, osmesa")
         ->check(CLI::IsMember({"auto", "egl", "osmesa"}))
         ->capture_default_str();
-    auto* window = app.add_flag("--window", options.window, "Show the frames in a GLFW window (not in portable builds)");
+    auto* window = app.add_flag("--window", options.window, "Show the frames in an interactive GLFW viewer window (controls: README.md; not in portable builds)");
     app.add_option("--screenshot", options.screenshot, "Window mode: save what the window shows to FILE")
         ->needs(window);
     app.add_flag("--gl-debug,!--no-gl-debug", options.debug, "GL_KHR_debug output (on by default in debug builds)");

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "gl_check.h"
 
 namespace CLI { class App; }
@@ -30,6 +32,17 @@ struct GpuOptions {
 
 // Adds --backend auto|egl|osmesa, --window, --screenshot FILE, --gl-debug to a stage's command line.
 void add_gpu_options(CLI::App& app, GpuOptions& options);
+
+// Window mode: what the user did with mouse and keyboard since the last take_input() (the viewer's input, gpu/viewer.h;
+// GLFW's own codes stay in context_glfw.cpp).
+struct WindowInput {
+    glm::vec2 orbit_drag{0.0f};   // cursor movement in window pixels with the left button held
+    glm::vec2 pan_drag{0.0f};     // ... with the right or middle button held, or shift + left
+    float scroll = 0.0f;          // wheel steps, positive = away from the user
+    std::string keys;             // keys pressed, in order: 'a'-'z', '0'-'9', '+', '-', ' ' (space), '\x1b' (Esc)
+    glm::vec3 held{0.0f};         // movement keys held now: x = D - A, y = E - Q, z = W - S
+    int window_height = 0;        // in the units of the drags
+};
 
 // A current GL 4.5 core context. Move-only; destroying it releases the context (and the window).
 // One context is current at a time on the creating thread; make_current() reloads the GL function pointers when
@@ -62,6 +75,9 @@ public:
     bool should_close() const;
     // Window mode: the window's pixels as RGBA8, rows top to bottom (for --screenshot).
     std::vector<std::uint8_t> read_window_rgba8(int& width, int& height) const;
+    // Window mode: the input since the last call (present() polls the events), and the window's title.
+    WindowInput take_input();
+    void set_title(const std::string& title);
 
     struct Impl;
 private:

@@ -29,6 +29,8 @@ struct GpuContext::Impl {
     virtual bool should_close() const { return false; }
     virtual bool present(unsigned fbo, int width, int height);
     virtual std::vector<std::uint8_t> read_window_rgba8(int& width, int& height) const;
+    virtual WindowInput take_input() { return {}; }
+    virtual void set_title(const std::string& /*title*/) {}
 
 protected:
     virtual void make_native_current() = 0;   // eglMakeCurrent, OSMesaMakeCurrent, glfwMakeContextCurrent

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #define GLFW_INCLUDE_NONE 1
 #include <GLFW/glfw3.h>
@@ -29,8 +30,68 @@ std::runtime_error glfw_failure(const std::string& what) {
     return std::runtime_error("GLFW: " + what + (g_glfw_error.empty() ? std::string() : ": " + g_glfw_error));
 }
 
+// The viewer's input (context.h, WindowInput) from GLFW's callbacks: drags, wheel and key presses add up between
+// two take_input() calls; held movement keys are read when it is called.
+char key_char(int key) {
+    if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return char('a' + (key - GLFW_KEY_A));
+    if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) return char('0' + (key - GLFW_KEY_0));
+    if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) return char('0' + (key - GLFW_KEY_KP_0));
+    switch (key) {
+    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: case GLFW_KEY_RIGHT_BRACKET: return '+';
+    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: case GLFW_KEY_LEFT_BRACKET: return '-';
+    case GLFW_KEY_SPACE: return ' ';
+    case GLFW_KEY_ESCAPE: return '\x1b';
+    default: return 0;
+    }
+}
+
 struct GlfwContext final : GpuContext::Impl {
     GLFWwindow* window = nullptr;
+    WindowInput input;
+    bool cursor_known = false;
+    double cursor_x = 0, cursor_y = 0;
+
+    static GlfwContext& of(GLFWwindow* w) { return *static_cast<GlfwContext*>(glfwGetWindowUserPointer(w)); }
+
+    void install_callbacks() {
+        glfwSetWindowUserPointer(window, this);
+        glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+            GlfwContext& self = of(w);
+            const glm::vec2 delta(self.cursor_known ? float(x - self.cursor_x) : 0.0f,
+                                  self.cursor_known ? float(y - self.cursor_y) : 0.0f);
+            self.cursor_known = true;
+            self.cursor_x = x;
+            self.cursor_y = y;
+            const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+            const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                               glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+            if ((left && shift) || glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
+                self.input.pan_drag += delta;
+            else if (left)
+                self.input.orbit_drag += delta;
+        });
+        glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { of(w).input.scroll += float(dy); });
+        glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+            if (action != GLFW_PRESS) return;
+            if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
+            if (const char c = key_char(key)) of(w).input.keys += c;
+        });
+    }
+
+    float held(int plus, int minus) const {
+        return float(glfwGetKey(window, plus) == GLFW_PRESS) - float(glfwGetKey(window, minus) == GLFW_PRESS);
+    }
+
+    WindowInput take_input() override {
+        WindowInput out = std::exchange(input, WindowInput{});
+        out.held = {held(GLFW_KEY_D, GLFW_KEY_A), held(GLFW_KEY_E, GLFW_KEY_Q), held(GLFW_KEY_W, GLFW_KEY_S)};
+        int width = 0;
+        glfwGetWindowSize(window, &width, &out.window_height);
+        return out;
+    }
+
+    void set_title(const std::string& title) override { glfwSetWindowTitle(window, title.c_str()); }
 
     ~GlfwContext() override {
         if (!window) return;
@@ -98,6 +159,7 @@ std::unique_ptr<GpuContext::Impl> create_glfw_context(const GpuOptions& options)
     g_glfw_created = true;
     glfwMakeContextCurrent(impl->window);
     glfwSwapInterval(0);
+    impl->install_callbacks();
     impl->backend = "glfw";
     return impl;
 }

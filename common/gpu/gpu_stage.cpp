@@ -1,5 +1,7 @@
 #include "gpu_stage.h"
 
+#include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -42,6 +44,13 @@ void GpuStage::initialize() {
         gpu_options.window_height = app_->get_option("--height")->as<int>();
     }
     context_ = create_context(gpu_options);
+    if (context_.is_window()) {
+        viewer_ = std::make_unique<Viewer>(app_ ? app_->get_name() : "gpu stage");
+        if (app_ && !app_->get_option("--quiet")->as<bool>()) {
+            std::printf("%s", Viewer::key_help().c_str());
+            std::fflush(stdout);
+        }
+    }
 }
 
 std::string GpuStage::renderer_name() const {
@@ -81,7 +90,11 @@ void GpuStage::add_phase_times(const std::vector<std::pair<std::string, double>>
     }
 }
 
-FrameResult GpuStage::render(const Scene& scene, const RenderSettings& settings) {
+FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings& requested_settings) {
+    const auto start = std::chrono::steady_clock::now();
+    // In a window the viewer may render another camera, a paused frame, other effects or depth (viewer.h).
+    const Scene& scene = viewer_ ? viewer_->scene_for_frame(requested_scene) : requested_scene;
+    const RenderSettings settings = viewer_ ? viewer_->settings_for_frame(requested_settings) : requested_settings;
     if (context_.valid()) context_.make_current();
     if (!shared_) shared_ = std::make_unique<Shared>(traversal_);
     Shared& s = *shared_;
@@ -119,7 +132,10 @@ FrameResult GpuStage::render(const Scene& scene, const RenderSettings& settings)
     result.extra["programs"] = programs;
     add_stage_stats(result);
 
-    if (context_.is_window()) closed_ = !window_.present(context_, result.image, gpu_options.screenshot);
+    if (viewer_) {
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        closed_ = !viewer_->show(context_, window_, s.wavefront, result, settings, ms, gpu_options.screenshot);
+    }
     return result;
 }
 

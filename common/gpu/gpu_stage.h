@@ -25,6 +25,7 @@
 #include "context.h"
 #include "gpu_scene.h"
 #include "wavefront.h"
+#include "viewer.h"
 #include "window_presenter.h"
 
 namespace rt::gpu {
@@ -80,6 +81,7 @@ private:
     Traversal traversal_;
     std::unique_ptr<Shared> shared_;
     WindowPresenter window_;           // --window only
+    std::unique_ptr<Viewer> viewer_;   // --window only: mouse and keys between frames (viewer.h)
     bool closed_ = false;              // the user closed the window
 };
 

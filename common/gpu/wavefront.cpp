@@ -466,9 +466,16 @@ void Wavefront::resolve(std::size_t band) {
     check_gl("wavefront: resolve pass");
 }
 
+std::vector<Wavefront::ImageBand> Wavefront::image_bands() const {
+    std::vector<ImageBand> bands;
+    for (std::size_t b = 0; b < image_bands_.size(); ++b) bands.push_back({image_bands_[b], band_pixels(b).first, band_pixels(b).second});
+    return bands;
+}
+
 Image Wavefront::finish_frame(RayCounters& counters) {
-    Image image(settings_.width, settings_.height);
-    for (std::size_t band = 0; band < image_bands_.size(); ++band) {
+    Image image;
+    if (settings_.need_image) image = Image(settings_.width, settings_.height);
+    for (std::size_t band = 0; band < image_bands_.size() && settings_.need_image; ++band) {
         const auto [first, count] = band_pixels(band);
         const std::vector<glm::vec4> sums = image_bands_[band].download<glm::vec4>(count);
         for (std::size_t i = 0; i < count; ++i)

@@ -122,11 +122,23 @@ public:
     // the traversal, then shaded as above.
     void trace_camera_sample(glm::vec2 offset);
 
-    // End of the frame: the image (the mean over the samples) and the counters. Waits for the GPU.
+    // End of the frame: the image (the mean over the samples; empty when settings.need_image is false, the image
+    // then stays on the GPU: image_bands()) and the counters. Waits for the GPU.
     Image finish_frame(RayCounters& counters);
     // The same into a FrameResult, with the diagnostics the settings asked for: `hits` (record_hits: one HitRecord
     // per traced or rasterized ray) and `tests_per_pixel` (record_tests_per_pixel).
     void finish_frame(FrameResult& result);
+
+    // The frame's image where it is, on the GPU (a window shows it without a read-back): band by band, the float
+    // sums over samples() samples (vec4 per pixel) of the pixels [first, first + count), row-major from the top.
+    struct ImageBand {
+        const Buffer& sums;
+        std::size_t first, count;
+    };
+    std::vector<ImageBand> image_bands() const;
+    int samples() const { return samples_; }
+    int width() const { return settings_.width; }
+    int height() const { return settings_.height; }
 
     // The defines the passes were compiled with (effects, RT_INTERSECT_METHOD, COUNT_TESTS, the traversal's).
     const ShaderDefines& defines() const { return defines_; }

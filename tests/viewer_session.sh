@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Drives a GPU stage's viewer (--window) with synthetic input, as a user would; run it inside an X server
+# (xvfb-run -a tests/viewer_session.sh EXE DIR STAGE_ARGS...). In DIR it leaves what run_gpu_case.cmake (MODE viewer)
+# compares, the screenshots the P key saves:
+#   <stage>_view_0000.png  the window as it opened
+#   <stage>_view_0001.png  after key 1 (shadows off)
+#   <stage>_view_0002.png  after a left drag (orbit)
+# then Esc closes the window; the stage must exit 0. Every wait gives up after 60 s.
+set -euo pipefail
+exe=$1 dir=$2
+shift 2
+stage=$(basename "$exe")
+cd "$dir"
+rm -f "${stage}"_view_*.png viewer.log
+"$exe" "$@" --window > viewer.log 2>&1 &
+pid=$!
+trap 'kill "$pid" 2>/dev/null || true' EXIT
+
+fail() { echo "viewer session: $*" >&2; cat viewer.log >&2; exit 1; }
+wait_for() {   # wait_for FILE: until the viewer saved it (and the file is complete: it is renamed into place)
+  for _ in $(seq 600); do
+    [ -f "$1" ] && return 0
+    kill -0 "$pid" 2>/dev/null || fail "the stage exited before saving $1"
+    sleep 0.1
+  done
+  fail "no $1 after 60 s"
+}
+
+# The title shows the frame time once the first frame is on screen.
+win=$(timeout 60 xdotool search --sync --onlyvisible --name " ms \| " | head -n1) || fail "no window"
+# Keys go to the window under the pointer (no window manager: focus follows the pointer).
+xdotool mousemove --window "$win" 20 20
+xdotool key p
+wait_for "${stage}_view_0000.png"
+xdotool key 1 key p
+wait_for "${stage}_view_0001.png"
+xdotool mousemove --window "$win" 20 30 mousedown 1 mousemove --window "$win" 50 30 mousemove --window "$win" 70 34 mouseup 1
+xdotool key p
+wait_for "${stage}_view_0002.png"
+xdotool key Escape
+for _ in $(seq 600); do
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.1
+done
+trap - EXIT
+wait "$pid" || fail "the stage exited with $?"
+grep -q "shadows off" viewer.log || fail "key 1 did not turn shadows off"
