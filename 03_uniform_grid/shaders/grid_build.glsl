@@ -59,6 +59,9 @@ uint grid_for_each_cell_of_chunk(uint w, uint triangle_count) {
     // The chunk's first cell from its linear index in the box; then step x, carrying into y and z.
     const uint nx = uint(last.x - first.x) + 1u, ny = uint(last.y - first.y) + 1u;
     ivec3 cell = first + ivec3(begin % nx, (begin / nx) % ny, begin / (nx * ny));
+    // BEGIN EXERCISE 03.grid_cells: walk the chunk's cells (x fastest, then y, then z) and, for each one the
+    // triangle overlaps (grid_triangle_overlaps_cell), call grid_visit_cell(t, w, cell index, k) with k counting
+    // them; return how many.
     uint k = 0u;
     for (uint i = begin; i < end; ++i) {
         if (grid_triangle_overlaps_cell(cell, a, b, c)) grid_visit_cell(t, w, grid_cell_index(cell), k++);
@@ -68,4 +71,6 @@ uint grid_for_each_cell_of_chunk(uint w, uint triangle_count) {
         }
     }
     return k;
+    // STUB: return 0u;
+    // END EXERCISE
 }

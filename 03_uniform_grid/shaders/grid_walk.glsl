@@ -50,6 +50,9 @@ bool grid_walk_begin(Ray ray, out GridWalk w) {
 // tMax per axis: the t of the next boundary (recomputed from the boundary rather than adding tDelta, so the walk
 // agrees with the cells' own boundaries), then the end t1 of the current cell.
 void grid_walk_cell_end(Ray ray, inout GridWalk w) {
+    // BEGIN EXERCISE 03.dda_cell_end: per axis, the t where the ray crosses the current cell's next boundary
+    // (grid_boundary; infinity on an axis the ray does not move along); the smallest names w.axis, and the cell ends
+    // at w.t1 = that t, clamped to [w.t, w.t_exit].
     vec3 t_max;
     for (int a = 0; a < 3; ++a) {
         precise float tb = (grid_boundary(a, w.cell[a] + (w.step[a] > 0 ? 1 : 0)) - ray.origin[a]) / ray.direction[a];
@@ -58,6 +61,9 @@ void grid_walk_cell_end(Ray ray, inout GridWalk w) {
     w.axis = t_max.x <= t_max.y ? (t_max.x <= t_max.z ? 0 : 2) : (t_max.y <= t_max.z ? 1 : 2);   // ties: x, y, z
     const float end = min(t_max[w.axis], w.t_exit);
     w.t1 = end > w.t ? end : w.t;   // not max(): it may return -0 for max(+0, -0), walk_grid gives +0
+    // STUB: w.axis = 0;
+    // STUB: w.t1 = w.t_exit;
+    // END EXERCISE
 }
 
 // Steps into the next cell; false when the ray leaves the grid (or its t-range) there.

@@ -147,6 +147,10 @@ public:
         }
         if (depth >= settings_.max_depth) return color;
 
+        // BEGIN EXERCISE 01.whitted_recursion: spawn the reflection ray (reflect_dir) and the refraction ray
+        // (refract_dir, none at total internal reflection) when the scene's effects ask for them and the child's weight
+        // stays above the cut-off; each starts at spawn_origin(sp, direction), counts in counters.rays, and adds
+        // its coefficient times radiance(child, depth + 1, ...) with path 2 * path (reflection) or 2 * path + 1.
         // Reflection and refraction (docs/shading.md, "Secondary rays"). eta = n_incident / n_transmitted.
         const float cos_i = std::clamp(-glm::dot(d, n), 0.0f, 1.0f);
         const float eta = sp.front_face ? 1.0f / s.ior : s.ior;
@@ -176,6 +180,9 @@ public:
             }
         }
         return color;
+        // STUB: (void)weight;
+        // STUB: return color;
+        // END EXERCISE
     }
 
     // Weights of the reflected and refracted rays (docs/shading.md): metals reflect their base colour; the

@@ -84,6 +84,9 @@ void main() {
     Ray ray = camera_ray(rt_camera, wf_image_size.x, wf_image_size.y, x, y);
     e.ray = wf_make_ray(ray.origin, ray.direction, RT_INFINITY, vec3(1.0), pixel, 0u, WF_KIND_PRIMARY, 1u, 0u);
 
+    // BEGIN EXERCISE 02.primary_hits: intersect the pixel's camera ray with every distinct triangle of the 3x3
+    // G-buffer neighbourhood (neighbourhood_triangles), keeping the closest (ties: the lowest id), then the sliver
+    // case; fill e.triangle, e.t, e.u, e.v and count the tests (wf_count_tests).
     // Brute force over the candidates, in id order as brute_force.glsl: a hit must be strictly closer than the
     // closest so far (checked again after the test, whose scaled t < tmax may round an equal t through), so at an
     // equal t the lowest id stays.
@@ -117,6 +120,8 @@ void main() {
         }
     }
     wf_count_tests(n);
+    // STUB: e.triangle = -1;
+    // END EXERCISE
     wf_flush_tests(pixel);
     wf_hits[slot] = e;
     wf_flags[slot] = e.triangle >= 0 ? 1u : 0u;

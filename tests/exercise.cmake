@@ -1,0 +1,14 @@
+# The course's grading can fail (scripts/exercise, scripts/grade): the student copy of each stage (its exercises
+# stubbed out) builds, and scripts/grade finds some of its golden images wrong. The solution passing is the golden
+# tests themselves (golden.<stage>.*). One working copy serves every stage in turn (tests/run_exercise_case.cmake),
+# building only the stage and image_compare, so the test costs about one build of the stages.
+find_program(RT_PYTHON3 python3 PATHS /usr/bin NO_DEFAULT_PATH)
+if(NOT RT_PYTHON3)
+  message(STATUS "no /usr/bin/python3: no exercise test")
+  return()
+endif()
+string(REPLACE ";" "|" stages "${RT_STAGES}")
+add_test(NAME exercise.each_stage_builds_and_fails_its_grading
+         COMMAND ${CMAKE_COMMAND} -DROOT=${PROJECT_SOURCE_DIR} -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/exercise
+                 "-DSTAGES=${stages}" -P ${CMAKE_CURRENT_SOURCE_DIR}/run_exercise_case.cmake)
+set_tests_properties(exercise.each_stage_builds_and_fails_its_grading PROPERTIES LABELS "exercise" TIMEOUT 1800)
