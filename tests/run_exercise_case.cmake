@@ -75,3 +75,18 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "with the solution put back, scripts/grade exited ${rc}, not 0 (see ${OUT_DIR}/report-solution)")
 endif()
 message(STATUS "with the solution put back, every stage passes its grading")
+
+# The reports load in a real browser with every image (Debian's chromium, installed by scripts/setup): a failing
+# stage's and the passing one.
+find_program(chromium chromium)
+if(chromium)
+  list(GET STAGES 0 first)
+  foreach(report report-${first} report-solution)
+    execute_process(COMMAND ${copy}/scripts/grade --check-report ${OUT_DIR}/${report} RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "${OUT_DIR}/${report}/index.html does not load with every image in chromium")
+    endif()
+  endforeach()
+else()
+  message(FATAL_ERROR "chromium not found: run scripts/setup (it installs chromium for this test)")
+endif()
