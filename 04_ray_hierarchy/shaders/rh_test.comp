@@ -1,0 +1,36 @@
+#version 450 core
+// The conservative test of one chunk of candidate pairs (node, item) at one level (rh_may_hit, rh_common.glsl):
+// writes for each pair how many pairs it expands to (0 when rejected): the node's children with the same triangle,
+// or, for an object, the object's triangles with the same node. The scan of these counts places the expansion.
+#include "rh_common.glsl"
+#include "rh_pairs.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = RH_BINDING_NODES) readonly buffer Nodes { RhNode rh_nodes[]; };
+layout(std430, binding = RH_BINDING_SPHERES) readonly buffer Spheres { vec4 rh_spheres[]; };
+layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject rh_objects[]; };
+layout(std430, binding = RH_BINDING_COUNTS) writeonly buffer Counts { uint rh_counts[]; };
+layout(std430, binding = RH_BINDING_INFO) buffer Info { uint rh_info[]; };
+
+uniform uint rh_count;           // pairs in the chunk
+uniform uint rh_level_first;     // this level's node 0 in rh_nodes
+uniform uint rh_children;        // nodes (or rays) on the level below
+uniform uint rh_branching;
+uniform uint rh_objects_mode;    // 1: items are objects
+
+void main() {
+    const uint i = rt_global_index();
+    if (i >= rh_count) return;
+    const uvec2 p = rh_pair(i);
+    const RhNode node = rh_nodes[rh_level_first + p.x];
+    uint n = 0u;
+    if (rh_objects_mode == 1u) {
+        const RhObject o = rh_objects[p.y];
+        if (rh_may_hit(node, o.sphere)) n = o.count;
+    } else if (rh_may_hit(node, rh_spheres[p.y])) {
+        n = min(rh_branching, rh_children - p.x * rh_branching);
+    }
+    rh_counts[i] = n;
+    if (n > 0u) atomicAdd(rh_info[0], 1u);
+}
