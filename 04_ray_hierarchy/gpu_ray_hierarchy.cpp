@@ -117,7 +117,12 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
     in_ = &in;
     shadow_ = shadow;
     capacity_ = std::clamp<std::size_t>(in.wavefront.storage_limit() / 16, 64, kMaxCapacity);
+    if (options.pair_capacity > 0) capacity_ = std::min(capacity_, std::max<std::size_t>(options.pair_capacity, 16));
     const std::uint32_t n = std::uint32_t(in.count);
+    // The hit list: 4 entries per ray (every ray keeps its closest hits after a prune; a ray of the batch takes 64
+    // bytes in the queue, so 4 x 16 bytes per ray fit the storage limit too), or capacity() when that is more.
+    const std::size_t per_ray = std::size_t(std::clamp(options.hit_list_per_ray, 1, 4));
+    hit_capacity_ = options.hit_list_per_ray < 4 ? per_ray * n : std::max<std::size_t>(capacity_, per_ray * n);
     if (n == 0) return;
 
     // Results start as "nothing hit".
@@ -128,8 +133,8 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         in.results.clear_u32(0);
     } else {
         state_.reserve(std::size_t(n) * 32);
-        hits_.reserve(capacity_ * 16);
-        hits_tmp_.reserve(capacity_ * 16);
+        hits_.reserve(hit_capacity_ * 16);
+        hits_tmp_.reserve(hit_capacity_ * 16);
         state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
         in.wavefront.set_uniforms(fold_);
         fold_.set("rh_mode", 0u);
@@ -324,9 +329,11 @@ void GpuRayHierarchy::leaves(std::uint32_t count) {
         leaf_dispatch(0, count);
         return;
     }
-    // The hit list holds capacity() entries: a chunk goes in once there is room for all of its pairs (each may add
-    // one hit); when there is not, hits left behind by closer ones are pruned, and the chunk is split if needed.
-    const std::uint64_t cap = capacity_;
+    // The hit list holds hit_capacity_ entries: a chunk goes in once there is room for all of its pairs (each may
+    // add one hit); when there is not, hits left behind by closer ones are pruned, and the chunk is split if needed.
+    // Only a batch whose rays keep 4 hits each within the tie range would fill it: then a clear error, not a
+    // dropped hit.
+    const std::uint64_t cap = hit_capacity_;
     for (std::uint32_t first = 0; first < count;) {
         if (hits_bound_ + (count - first) > cap) {
             hits_bound_ = read_info(1);
@@ -374,8 +381,8 @@ void GpuRayHierarchy::prune_hits() {
     ++prunes;
     Buffer& flags = counts_[0];
     Buffer& offsets = offsets_[0];
-    flags.reserve(capacity_ * 4);
-    offsets.reserve(capacity_ * 4);
+    flags.reserve(hit_capacity_ * 4);
+    offsets.reserve(hit_capacity_ * 4);
     hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
     state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
     info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);

@@ -33,6 +33,8 @@ struct HierarchyOptions {
     int branching = 4;          // --branching: 4, 8 or 16 children per node
     int levels = 0;             // --levels: upper levels used (0 = up to a single root)
     bool object_culling = true; // --object-culling: test top nodes against objects before their triangles
+    std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
+    int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
 };
 
 // A run of consecutive triangles (the flattened scene keeps no mesh boundaries: objects are runs of one material).
@@ -104,7 +106,7 @@ private:
     gpu::Buffer spheres_buf_, objects_buf_, nodes_, info_, group_heads_, group_count_, state_, hits_, hits_tmp_;
     std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per level index (0 = leaves; top + 1 = objects)
     std::vector<std::uint32_t> level_first_, level_nodes_;
-    std::size_t triangles_ = 0, objects_ = 0, capacity_ = 0;
+    std::size_t triangles_ = 0, objects_ = 0, capacity_ = 0, hit_capacity_ = 0;
     std::uint64_t hits_bound_ = 0;    // an upper bound of the hit list's length (read back when it may be full)
     // The batch being traced.
     const gpu::BatchTraceInputs* in_ = nullptr;

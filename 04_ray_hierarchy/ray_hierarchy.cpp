@@ -78,7 +78,9 @@ std::vector<std::vector<RhNode>> rh_build(const std::vector<RhRay>& rays, int br
     std::vector<std::vector<RhNode>> levels(1);
     for (const RhRay& r : rays) levels[0].push_back(rh_leaf(r.origin, r.direction));
     const std::size_t b = std::size_t(branching);
-    while (levels.back().size() > 1 && (max_levels <= 0 || int(levels.size()) <= max_levels)) {
+    // At least one level above the rays (as the GPU build), then up to a single root or the limit.
+    const auto more = [&] { return max_levels <= 0 || int(levels.size()) <= max_levels; };
+    while (levels.size() == 1 || (levels.back().size() > 1 && more())) {
         const std::vector<RhNode>& below = levels.back();
         std::vector<RhNode> level((below.size() + b - 1) / b);
         for (std::size_t j = 0; j < level.size(); ++j)

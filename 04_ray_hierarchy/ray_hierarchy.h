@@ -38,7 +38,8 @@ glm::vec4 rh_triangle_sphere(glm::vec3 a, glm::vec3 b, glm::vec3 c);
 bool rh_may_hit(const RhNode& node, glm::vec4 sphere);
 
 // A whole hierarchy over rays (origin, direction pairs): levels[0] are the leaves, levels[l][j] bounds children
-// [j * B, (j + 1) * B) of level l - 1. Built up to a single root, or `max_levels` upper levels when > 0.
+// [j * B, (j + 1) * B) of level l - 1. At least one level above the rays, then up to a single root, or `max_levels`
+// upper levels when > 0.
 struct RhRay {
     glm::vec3 origin, direction;
 };
