@@ -109,7 +109,8 @@ void GpuRayHierarchy::level_buffers(int index) {
     }
     pairs_[index].reserve(capacity_ * 8);
     counts_[index].reserve(capacity_ * 4);
-    offsets_[index].reserve(capacity_ * 4);
+    offsets_[index].reserve(capacity_ * 4);   // the work groups' offsets (capacity / 64), or the hit list's scan
+    group_sums_.reserve(capacity_ / 64 * 4 + 4);
 }
 
 void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
@@ -156,6 +157,15 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         traverse(in, g, top, shadow);
     }
     if (!shadow) fold(in);
+    // The leaves' tests, counted here, go to the pipeline's test counter in a few adds (one thread each).
+    for (; pending_tests_ > 0;) {
+        const std::uint32_t add = std::uint32_t(std::min<std::uint64_t>(pending_tests_, 1u << 31));
+        fold_.set("rh_mode", 6u);
+        fold_.set("rh_count", add);
+        fold_.dispatch(1);
+        barrier();
+        pending_tests_ -= add;
+    }
     gpu::check_gl("04_ray_hierarchy: trace");
 }
 
@@ -271,6 +281,7 @@ void GpuRayHierarchy::test_chunk(int level, const Source& src, std::uint32_t cou
         if (!src.implicit) pairs_[level].bind(gpu::kWavefrontBindingTraversalFirst + 3);
         counts_[level].bind(gpu::kWavefrontBindingTraversalFirst + 5);
         info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+        group_sums_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
         set_source(test_, src);
         test_.set("rh_count", count);
         test_.set("rh_level_first", level_first_[node_level]);
@@ -279,7 +290,8 @@ void GpuRayHierarchy::test_chunk(int level, const Source& src, std::uint32_t cou
         test_.set("rh_objects_mode", objects ? 1u : 0u);
         test_.dispatch_threads(count);
         barrier();
-        compaction_.scan().exclusive(counts_[level], offsets_[level], count, &info_, 12);
+        const std::size_t groups = (std::size_t(count) + 63) / 64;
+        compaction_.scan().exclusive(group_sums_, offsets_[level], groups, &info_, 12);
         std::uint32_t info[4];
         info_.download(info, sizeof info);
         survivors = info[0];
@@ -303,6 +315,7 @@ void GpuRayHierarchy::test_chunk(int level, const Source& src, std::uint32_t cou
             objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
             if (!src.implicit) pairs_[level].bind(gpu::kWavefrontBindingTraversalFirst + 3);
             pairs_[out_level].bind(gpu::kWavefrontBindingTraversalFirst + 4);
+            counts_[level].bind(gpu::kWavefrontBindingTraversalFirst + 5);
             offsets_[level].bind(gpu::kWavefrontBindingTraversalFirst + 6);
             set_source(expand_, src);
             expand_.set("rh_count", count);
@@ -310,7 +323,7 @@ void GpuRayHierarchy::test_chunk(int level, const Source& src, std::uint32_t cou
             expand_.set("rh_window_count", w);
             expand_.set("rh_branching", b);
             expand_.set("rh_objects_mode", objects ? 1u : 0u);
-            expand_.dispatch_threads(w);
+            expand_.dispatch_threads(count);
             barrier();
             ++windows;
         }
@@ -325,6 +338,7 @@ void GpuRayHierarchy::leaves(std::uint32_t count) {
     HierarchyKindStats& ks = stats[group_.kind];
     ks.levels[0].pairs_in += count;
     ks.local_tests += count;
+    pending_tests_ += count;
     if (shadow_) {
         leaf_dispatch(0, count);
         return;

@@ -8,7 +8,8 @@
 //   traverse  candidate pairs (node, triangle) of the top level (all of them, implicitly), or first (node, object)
 //             with --object-culling; per chunk of pairs: rh_test.comp (the cone+sphere test; each survivor counts
 //             its children), the shared exclusive scan (common/gpu/scan.h), rh_expand.comp writing the survivors'
-//             (child, triangle) pairs, window by window, and down to the next level (depth first over chunks).
+//             (child, triangle) pairs, window by window, and down to the next level (depth first over chunks). The
+//             scan runs over the sums of work groups of 64 pairs; rh_expand.comp adds the offsets inside a group.
 //   local     rh_leaf.comp, the exact ray/triangle test on every (ray, triangle) pair that reached the leaves; for
 //             closest hits then rh_fold.comp (rh_closest.glsl: brute force's exact hit).
 //
@@ -103,10 +104,11 @@ private:
     std::string key_;
     gpu::Program spheres_, build_, heads_, test_, expand_, leaf_closest_, leaf_shadow_, fold_;
     gpu::Compaction compaction_;
-    gpu::Buffer spheres_buf_, objects_buf_, nodes_, info_, group_heads_, group_count_, state_, hits_, hits_tmp_;
+    gpu::Buffer spheres_buf_, objects_buf_, nodes_, info_, group_sums_, group_heads_, group_count_, state_, hits_, hits_tmp_;
     std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per level index (0 = leaves; top + 1 = objects)
     std::vector<std::uint32_t> level_first_, level_nodes_;
     std::size_t triangles_ = 0, objects_ = 0, capacity_ = 0, hit_capacity_ = 0;
+    std::uint64_t pending_tests_ = 0;   // leaf tests not yet added to the test counter
     std::uint64_t hits_bound_ = 0;    // an upper bound of the hit list's length (read back when it may be full)
     // The batch being traced.
     const gpu::BatchTraceInputs* in_ = nullptr;

@@ -8,7 +8,8 @@
 //   3 resolve  per ray: the result (WavefrontTraceResult; triangle -1 for a miss);
 //   4 prune    per listed hit: rh_keep[i] = 1 if it is still within the tie range (hits left behind by a closer one
 //              are dropped from the list when it fills up: they can no longer matter).
-//   5 scatter  per listed hit: the kept ones to rh_hits_out[offset] (rh_keep bound to the scan of mode 4's flags).
+//   5 scatter  per listed hit: the kept ones to rh_hits_out[offset] (rh_keep bound to the scan of mode 4's flags);
+//   6 count    one thread: adds rh_count ray/triangle tests (the leaves', counted on the CPU) to the counter.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 #include "rh_closest.glsl"
@@ -25,7 +26,7 @@ uniform uint rh_batch_first;
 
 void main() {
     const uint i = rt_global_index();
-    if (i >= rh_count) return;
+    if (i >= (rh_mode == 6u ? 1u : rh_count)) return;
     if (rh_mode == 0u) {
         rh_state[i] = RhRayState(0x7f800000u, 0u, 0xffffffffu, -1, RT_INFINITY, 0.0, 0.0, 0u);
     } else if (rh_mode == 1u) {
@@ -65,6 +66,10 @@ void main() {
     } else if (rh_mode == 4u) {
         const uvec4 h = rh_hits[i];
         rh_keep[i] = rh_near(uintBitsToFloat(h.z), rh_state[h.x].min_t) ? 1u : 0u;
+    } else if (rh_mode == 6u) {
+#ifdef COUNT_TESTS
+        rt_counter_add(RT_COUNTER_INTERSECTION_TESTS, rh_count);
+#endif
     } else {
         const uvec4 h = rh_hits[i];   // rh_keep holds the exclusive scan of mode 4's flags now
         if (rh_near(uintBitsToFloat(h.z), rh_state[h.x].min_t)) rh_hits_out[rh_keep[i]] = h;

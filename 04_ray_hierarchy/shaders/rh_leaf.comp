@@ -1,7 +1,8 @@
 #version 450 core
 // The leaves: the exact ray/triangle test (common/shaders/intersect.glsl, as brute force) on each surviving
 // (ray, triangle) pair of a chunk. Shadow rays (RH_SHADOW): any hit blocks the light. Closest hits: step 1 of
-// rh_closest.glsl. Every test is counted (wf_count_tests) for the stats and the heatmap.
+// rh_closest.glsl. The chunk's tests are added to the global counter once, by the CPU, which knows their number
+// (rh_fold.comp, mode 6), not by an atomic per pair; only the heatmap needs one per pair, on the ray's pixel.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 #include "rh_pairs.glsl"
@@ -39,6 +40,7 @@ void main() {
         if (rh_near(t, min(before, bits))) rh_hits[atomicAdd(rh_info[1], 1u)] = uvec4(slot, p.y, bits, 0u);
     }
 #endif
-    wf_count_tests(1u);
-    wf_flush_tests(r.pixel);
+#if defined(COUNT_TESTS) && defined(RECORD_TESTS_PER_PIXEL)
+    if (r.pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[r.pixel], 1u);
+#endif
 }
