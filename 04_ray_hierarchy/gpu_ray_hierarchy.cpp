@@ -154,7 +154,7 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         ks.brute_force_tests += std::uint64_t(g.count) * triangles_;
         if (triangles_ == 0) continue;
         const int top = build(in, g);
-        traverse(in, g, top, shadow);
+        traverse(top);
     }
     if (!shadow) fold(in);
     // The leaves' tests, counted here, go to the pipeline's test counter in a few adds (one thread each).
@@ -241,7 +241,7 @@ void GpuRayHierarchy::set_source(const Program& p, const Source& s) const {
 
 // The top level's pairs are every top node with every item (object or triangle): implicit chunks of at most
 // capacity() pairs, whole rows of items when a row fits.
-void GpuRayHierarchy::traverse(const gpu::BatchTraceInputs&, const Group&, int top, bool) {
+void GpuRayHierarchy::traverse(int top) {
     top_ = top;
     for (int l = 0; l <= top + 1; ++l) level_buffers(l);
     const bool objects = options.object_culling && objects_ > 0;

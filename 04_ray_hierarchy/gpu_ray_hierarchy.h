@@ -90,7 +90,7 @@ private:
     void compile(const gpu::Wavefront& wavefront);
     std::vector<Group> find_groups(const gpu::BatchTraceInputs& in);
     int build(const gpu::BatchTraceInputs& in, const Group& g);
-    void traverse(const gpu::BatchTraceInputs& in, const Group& g, int top, bool shadow);
+    void traverse(int top);
     void test_chunk(int level, const Source& src, std::uint32_t count, bool objects);
     void leaves(std::uint32_t count);
     void leaf_dispatch(std::uint32_t first, std::uint32_t count);
