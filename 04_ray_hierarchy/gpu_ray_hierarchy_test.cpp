@@ -164,9 +164,18 @@ Scene scene_at(const std::string& name, float time = 0.0f) {
     return flatten(make_builtin_scene(name), options);
 }
 
-TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
-    gpu::test_context();
-    const Scene scene = scene_at("cornell");
+// `scene` moved and scaled: p * scale + offset (huge and tiny coordinates for the float padding).
+Scene transformed(Scene scene, float scale, glm::vec3 offset) {
+    Bounds b;
+    for (glm::vec3& p : scene.positions) {
+        p = p * scale + offset;
+        b.add(p);
+    }
+    scene.bounds = b;
+    return scene;
+}
+
+void expect_brute_force_answers(const Scene& scene, const std::string& what) {
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
     RenderSettings settings;
@@ -232,16 +241,24 @@ TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
                 }
             }
             if (i < 1000) {
-                ASSERT_EQ(closest[i].triangle, best.triangle) << "ray " << i;
-                if (best.valid()) ASSERT_EQ(bits(closest[i].t), bits(best.t)) << "ray " << i;
+                ASSERT_EQ(closest[i].triangle, best.triangle) << what << " ray " << i;
+                if (best.valid()) ASSERT_EQ(bits(closest[i].t), bits(best.t)) << what << " ray " << i;
                 hits += best.valid();
             } else {
-                ASSERT_EQ(occluded[i - 1000], any ? 1u : 0u) << "shadow ray " << i;
+                ASSERT_EQ(occluded[i - 1000], any ? 1u : 0u) << what << " shadow ray " << i;
             }
         }
-        EXPECT_GT(hits, 500u);
+        EXPECT_GT(hits, 500u) << what;
         EXPECT_LE(h.stats[2].local_tests, h.stats[2].brute_force_tests);
     }
+}
+
+TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
+    gpu::test_context();
+    const Scene cornell = scene_at("cornell");
+    expect_brute_force_answers(cornell, "cornell");
+    expect_brute_force_answers(transformed(cornell, 1e3f, glm::vec3(3e6f, -1e6f, 2e6f)), "cornell x1e3 at 3e6");
+    expect_brute_force_answers(transformed(cornell, 1e-4f, glm::vec3(1e-3f)), "cornell x1e-4");
 }
 
 // ---------------------------------------------------------------------------------------------------------------
