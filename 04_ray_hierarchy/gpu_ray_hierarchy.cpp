@@ -63,7 +63,7 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     expand_ = Program::compute("04_ray_hierarchy/rh_expand.comp", d);
     leaf_closest_ = Program::compute("04_ray_hierarchy/rh_leaf.comp", d);
     gpu::ShaderDefines shadow = d;
-    shadow["RH_SHADOW"] = "1";
+    shadow.emplace("RH_SHADOW", "1");
     leaf_shadow_ = Program::compute("04_ray_hierarchy/rh_leaf.comp", shadow);
     fold_ = Program::compute("04_ray_hierarchy/rh_fold.comp", d);
     key_ = key;

@@ -242,7 +242,9 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
             }
             if (i < 1000) {
                 ASSERT_EQ(closest[i].triangle, best.triangle) << what << " ray " << i;
-                if (best.valid()) ASSERT_EQ(bits(closest[i].t), bits(best.t)) << what << " ray " << i;
+                if (best.valid()) {
+                    ASSERT_EQ(bits(closest[i].t), bits(best.t)) << what << " ray " << i;
+                }
                 hits += best.valid();
             } else {
                 ASSERT_EQ(occluded[i - 1000], any ? 1u : 0u) << what << " shadow ray " << i;
@@ -307,7 +309,9 @@ TEST(RayHierarchyRenderer, CornellEqualsStage02ForEveryBranchingAndALevelLimit) 
         const auto& refl = r.extra["ray_hierarchy"]["kinds"]["reflection"];
         // At 64x48 neighbouring rays diverge: B = 4 still skips most tests, B = 16 fewer (see README.md).
         EXPECT_LT(double(refl["percent_of_brute_force"]), o.branching == 4 ? 25.0 : 75.0) << what;
-        if (o.levels > 0) EXPECT_EQ(refl["levels"].size(), std::size_t(o.levels) + 1) << what;
+        if (o.levels > 0) {
+            EXPECT_EQ(refl["levels"].size(), std::size_t(o.levels) + 1) << what;
+        }
         EXPECT_LT(r.stats.counters.intersection_tests, reference.stats.counters.intersection_tests) << what;
     }
 }
