@@ -65,6 +65,10 @@ float rh_angle(vec3 a, vec3 b) { return atan(length(cross(a, b)), dot(a, b)); }
 // Both are then padded by RH_PAD relatively (plus RH_PAD of the coordinates' size for the rounding of c_i - c), so
 // the float rounding of these few operations can only make a node larger than the exact union.
 RhNode rh_union(RhNode kids[16], uint count) {
+    // BEGIN EXERCISE 04.node_union: bound the non-empty children (sphere.w >= 0): a sphere holding every child's
+    // sphere and a cone holding every child's cone (axis: their normalized axis sum; spread: the largest angle to a
+    // child's axis plus its spread), both padded by RH_PAD; every direction when the spread reaches
+    // RH_ALL_DIRECTIONS. rh_empty_node() when no child has rays.
     vec3 lo = vec3(RT_INFINITY), hi = vec3(-RT_INFINITY), axis_sum = vec3(0.0), first_axis = vec3(1.0, 0.0, 0.0);
     bool any = false, all_directions = false;
     for (uint i = 0u; i < count; ++i) {
@@ -90,6 +94,8 @@ RhNode rh_union(RhNode kids[16], uint count) {
     spread = spread * (1.0 + RH_PAD) + RH_PAD;
     if (all_directions || !(spread < RH_ALL_DIRECTIONS)) spread = 3.14159274;   // every direction (also NaN)
     return RhNode(vec4(c, radius), vec4(axis, spread));
+    // STUB: return count > 0u ? kids[0] : rh_empty_node();
+    // END EXERCISE
 }
 
 // A triangle's bounding sphere: the middle of its box, and the largest distance to a vertex, padded as above so that
@@ -111,6 +117,8 @@ vec4 rh_triangle_sphere(vec3 a, vec3 b, vec3 c) {
 // Rejects only when every comparison says so: NaN or overflow (huge coordinates) keep the pair.
 bool rh_may_hit(RhNode node, vec4 s) {
     if (!(node.sphere.w >= 0.0)) return false;   // empty node: no ray to test
+    // BEGIN EXERCISE 04.cone_sphere_test: true unless the distance from s's centre to the node's sphere swept along
+    // its cone exceeds the two radii (plus a rounding margin); a node covering every direction reaches everything.
     if (node.cone.w >= RH_ALL_DIRECTIONS) {
         // Every direction: the rays reach everything (the origins' sphere is then the only bound, and it does not
         // limit where a ray can go). Keep the pair.
@@ -128,4 +136,6 @@ bool rh_may_hit(RhNode node, vec4 s) {
     const float dist = cos_part <= 0.0 ? q_len : sin_part;
     const bool far = sin_part > 0.0 && dist > reach + margin;
     return !far;
+    // STUB: return false;
+    // END EXERCISE
 }
