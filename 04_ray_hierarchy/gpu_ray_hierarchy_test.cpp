@@ -17,6 +17,7 @@
 #include "common/gpu/glsl_test_harness.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/gpu_test_context.h"
+#include "common/gpu/same_frame_expectations.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/intersect.h"
@@ -279,19 +280,6 @@ FrameResult render_rh(const Scene& s, const RenderSettings& settings, HierarchyO
     RayHierarchyRenderer renderer;
     renderer.hierarchy_options = o;
     return renderer.render(s, settings);
-}
-
-void expect_same_frame(const FrameResult& a, const FrameResult& b, const std::string& what) {
-    ASSERT_EQ(a.image.pixels.size(), b.image.pixels.size()) << what;
-    for (std::size_t i = 0; i < a.image.pixels.size(); ++i) ASSERT_EQ(a.image.pixels[i], b.image.pixels[i]) << what;
-    for (int k = 0; k < 4; ++k) ASSERT_EQ(a.stats.counters.rays[k], b.stats.counters.rays[k]) << what;
-    ASSERT_EQ(a.hits.size(), b.hits.size()) << what;
-    for (std::size_t i = 0; i < a.hits.size(); ++i) {
-        ASSERT_EQ(a.hits[i].pixel, b.hits[i].pixel) << what << " ray " << i;
-        ASSERT_EQ(a.hits[i].kind_light, b.hits[i].kind_light) << what << " ray " << i;
-        ASSERT_EQ(a.hits[i].triangle, b.hits[i].triangle) << what << " ray " << i;
-        ASSERT_EQ(bits(a.hits[i].t), bits(b.hits[i].t)) << what << " ray " << i;
-    }
 }
 
 TEST(RayHierarchyRenderer, CornellEqualsStage02ForEveryBranchingAndALevelLimit) {
