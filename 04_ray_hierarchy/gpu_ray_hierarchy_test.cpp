@@ -1,0 +1,380 @@
+// Stage 04 on the GPU:
+//  - the GLSL twins (rh_common.glsl) keep the hierarchy's two properties on the adversarial ray sets (ray_sets.h):
+//    every ray inside all its ancestors, and no rejected (node, triangle) pair that a ray below hits;
+//  - the batch traversal on crafted rays (all directions, identical rays, one origin, zero and NaN directions, ...)
+//    gives exactly brute force's closest hits and occlusion;
+//  - the renderer's image, hits and ray counts equal stage 02's for every branching, a --levels limit and without
+//    object culling, and under a tiny storage limit (many chunks and windows, a pruned hit list).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <tuple>
+#include <cstring>
+#include <random>
+
+#include "02_raster_hybrid/hybrid_renderer.h"
+#include "common/gpu/glsl_test_harness.h"
+#include "common/gpu/gpu_scene.h"
+#include "common/gpu/gpu_test_context.h"
+#include "common/scene/builtin_scenes.h"
+#include "common/scene/effects.h"
+#include "common/trace/intersect.h"
+#include "gpu_ray_hierarchy.h"
+#include "ray_hierarchy.h"
+#include "ray_hierarchy_renderer.h"
+#include "ray_sets.h"
+
+namespace rt {
+namespace {
+
+using gpu::Words;
+
+std::uint32_t bits(float f) {
+    std::uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+RhNode node_at(const std::vector<std::uint32_t>& w, std::size_t i) {
+    RhNode n;
+    for (int k = 0; k < 4; ++k) n.sphere[k] = gpu::word_f(w, i + k);
+    for (int k = 0; k < 4; ++k) n.cone[k] = gpu::word_f(w, i + 4 + k);
+    return n;
+}
+
+// The hierarchy built by the GLSL functions (leaves, then unions level by level), one harness run per level.
+std::vector<std::vector<RhNode>> glsl_build(const std::vector<RhRay>& rays, int b) {
+    static gpu::GlslTestHarness leaf("rh_leaf", R"(#include "04_ray_hierarchy/rh_common.glsl"
+void test_main() {
+    const RhNode n = rh_leaf(in_vec3(0u), in_vec3(3u));
+    out_vec4(0u, n.sphere);
+    out_vec4(4u, n.cone);
+})");
+    static gpu::GlslTestHarness join("rh_union", R"(#include "04_ray_hierarchy/rh_common.glsl"
+void test_main() {
+    RhNode kids[16];
+    for (uint k = 0u; k < 16u; ++k) kids[k] = RhNode(in_vec4(1u + 8u * k), in_vec4(5u + 8u * k));
+    const RhNode n = rh_union(kids, in_u(0u));
+    out_vec4(0u, n.sphere);
+    out_vec4(4u, n.cone);
+})");
+    Words in;
+    for (const RhRay& r : rays) in << r.origin << r.direction;
+    std::vector<std::vector<RhNode>> levels(1);
+    const auto out = leaf.run(in.words, rays.size(), 6, 8);
+    for (std::size_t i = 0; i < rays.size(); ++i) levels[0].push_back(node_at(out, 8 * i));
+    while (levels.back().size() > 1 || levels.size() == 1) {
+        const std::vector<RhNode>& below = levels.back();
+        const std::size_t parents = (below.size() + b - 1) / b;
+        Words w;
+        for (std::size_t j = 0; j < parents; ++j) {
+            const std::size_t count = std::min<std::size_t>(b, below.size() - j * b);
+            w << std::uint32_t(count);
+            for (std::size_t k = 0; k < 16; ++k) {
+                const RhNode n = k < count ? below[j * b + k] : RhNode{};
+                w << n.sphere << n.cone;
+            }
+        }
+        const auto o = join.run(w.words, parents, 129, 8);
+        std::vector<RhNode> level;
+        for (std::size_t j = 0; j < parents; ++j) level.push_back(node_at(o, 8 * j));
+        levels.push_back(std::move(level));
+    }
+    return levels;
+}
+
+std::vector<glm::vec4> glsl_spheres(const std::vector<glm::vec3>& triangles) {
+    static gpu::GlslTestHarness h("rh_triangle_sphere", R"(#include "04_ray_hierarchy/rh_common.glsl"
+void test_main() { out_vec4(0u, rh_triangle_sphere(in_vec3(0u), in_vec3(3u), in_vec3(6u))); })");
+    Words in;
+    for (const glm::vec3& v : triangles) in << v;
+    const auto out = h.run(in.words, triangles.size() / 3, 9, 4);
+    std::vector<glm::vec4> s;
+    for (std::size_t i = 0; i < triangles.size() / 3; ++i)
+        s.emplace_back(gpu::word_f(out, 4 * i), gpu::word_f(out, 4 * i + 1), gpu::word_f(out, 4 * i + 2),
+                       gpu::word_f(out, 4 * i + 3));
+    return s;
+}
+
+bool exact_hit(const RhRay& r, const glm::vec3* v) {
+    Ray<float> ray;
+    ray.origin = r.origin;
+    ray.direction = r.direction;
+    float t, u, w;
+    return intersect_watertight(ray, WatertightRay<float>(r.direction), v[0], v[1], v[2], t, u, w) ||
+           intersect_moller(ray, v[0], v[1], v[2], t, u, w);
+}
+
+TEST(GlslRayHierarchy, EveryRayInsideItsAncestorsAndNoHitRejected) {
+    gpu::test_context();
+    static gpu::GlslTestHarness may_hit("rh_may_hit", R"(#include "04_ray_hierarchy/rh_common.glsl"
+void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec4(8u))); })");
+    std::size_t rejected = 0;
+    for (const ray_sets::Case& c : ray_sets::all())
+        for (int b : {4, 8, 16}) {
+            const auto levels = glsl_build(c.rays, b);
+            ASSERT_EQ(levels.back().size(), 1u);
+            for (std::size_t i = 0; i < c.rays.size(); ++i) {
+                if (rh_leaf(c.rays[i].origin, c.rays[i].direction).empty()) {
+                    EXPECT_TRUE(levels[0][i].empty()) << c.name << " ray " << i;
+                    continue;
+                }
+                std::size_t j = i;
+                for (std::size_t l = 1; l < levels.size(); ++l) {
+                    j /= std::size_t(b);
+                    ASSERT_TRUE(rh_contains(levels[l][j], c.rays[i].origin, c.rays[i].direction))
+                        << c.name << " B=" << b << " ray " << i << " level " << l;
+                }
+            }
+            // Every (node, triangle) pair at once through the GLSL test.
+            const std::vector<glm::vec4> spheres = glsl_spheres(c.triangles);
+            Words in;
+            std::vector<std::pair<std::size_t, std::size_t>> pairs;   // (level, node) per record, triangle-major
+            for (std::size_t t = 0; t < spheres.size(); ++t)
+                for (std::size_t l = 1; l < levels.size(); ++l)
+                    for (std::size_t j = 0; j < levels[l].size(); ++j) {
+                        in << levels[l][j].sphere << levels[l][j].cone << spheres[t];
+                        pairs.emplace_back(l, j);
+                    }
+            const auto out = may_hit.run(in.words, pairs.size(), 12, 1);
+            const std::size_t per_triangle = pairs.size() / spheres.size();
+            for (std::size_t p = 0; p < pairs.size(); ++p) {
+                if (out[p] != 0) continue;
+                ++rejected;
+                const auto [l, j] = pairs[p];
+                const std::size_t t = p / per_triangle;
+                std::size_t span = 1;
+                for (std::size_t k = 0; k < l; ++k) span *= std::size_t(b);
+                for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i)
+                    ASSERT_FALSE(exact_hit(c.rays[i], &c.triangles[3 * t]))
+                        << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
+            }
+        }
+    EXPECT_GT(rejected, 1000u);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The batch traversal on crafted rays against brute force on the CPU (bit-exact twins on llvmpipe).
+
+Scene scene_at(const std::string& name, float time = 0.0f) {
+    FlattenOptions options;
+    options.time = time;
+    options.aspect = 4.0f / 3.0f;
+    return flatten(make_builtin_scene(name), options);
+}
+
+// `scene` moved and scaled: p * scale + offset (huge and tiny coordinates for the float padding).
+Scene transformed(Scene scene, float scale, glm::vec3 offset) {
+    Bounds b;
+    for (glm::vec3& p : scene.positions) {
+        p = p * scale + offset;
+        b.add(p);
+    }
+    scene.bounds = b;
+    return scene;
+}
+
+void expect_brute_force_answers(const Scene& scene, const std::string& what) {
+    gpu::GpuScene gpu_scene;
+    gpu_scene.upload(scene);
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.effects = analyze_effects(scene);
+    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
+    wavefront.begin_frame(gpu_scene, settings);
+
+    // Rays from inside the box: random, identical, one origin, opposite, zero/NaN/infinite directions.
+    std::mt19937 g(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const glm::vec3 lo = scene.bounds.lo, size = scene.bounds.hi - scene.bounds.lo;
+    auto inside = [&] {
+        const glm::vec3 f(u(g), u(g), u(g));
+        return lo + size * (0.05f + 0.9f * f);
+    };
+    std::vector<gpu::WavefrontRay> rays;
+    const glm::vec3 one_origin = inside(), one_dir = ray_sets::unit(g);
+    for (int i = 0; i < 1500; ++i) {
+        gpu::WavefrontRay r{};
+        const int kind = i < 700 ? 2 : (i < 1000 ? 3 : 1);   // reflection, refraction, then shadow rays (2 lights)
+        r.origin = i % 5 == 1 ? one_origin : inside();
+        r.direction = i % 7 == 3 ? one_dir : (i % 11 == 5 ? -one_dir : ray_sets::unit(g));
+        if (i % 13 == 6) r.direction = glm::vec3(0.0f);
+        if (i % 17 == 8) r.direction = glm::vec3(NAN, 1.0f, 0.0f);
+        if (i % 19 == 9) r.direction = glm::vec3(INFINITY, 0.0f, 0.0f);
+        r.tmax = kind == 1 ? 0.1f + 2.0f * u(g) : INFINITY;
+        r.depth_kind = std::uint32_t(kind) << 16 | 1u;
+        r.light = kind == 1 ? (i < 1250 ? 0u : 1u) : 0u;
+        rays.push_back(r);
+    }
+    const gpu::Buffer ray_buffer = gpu::Buffer::from(rays);
+    gpu::Buffer results(rays.size() * sizeof(gpu::WavefrontTraceResult));
+    for (const HierarchyOptions o : {HierarchyOptions{4, 0, true}, HierarchyOptions{16, 2, false}}) {
+        GpuRayHierarchy h;
+        h.options = o;
+        h.prepare(gpu_scene, object_ranges(scene.material_ids));
+        h.trace({ray_buffer, 0, 1000, results, nullptr, wavefront}, false);
+        const auto closest = results.download<gpu::WavefrontTraceResult>(1000);
+        h.trace({ray_buffer, 1000, 500, results, nullptr, wavefront}, true);
+        const auto occluded = results.download<std::uint32_t>(500);
+        EXPECT_EQ(h.stats[2].groups + h.stats[3].groups, 2u);
+        EXPECT_EQ(h.stats[1].groups, 2u);   // one hierarchy per light
+        std::size_t hits = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            Ray<float> ray;
+            ray.origin = rays[i].origin;
+            ray.direction = rays[i].direction;
+            ray.tmax = rays[i].tmax;
+            const WatertightRay<float> w(ray.direction);
+            Hit<float> best;
+            bool any = false;
+            for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
+                float tt, uu, vv;
+                const glm::vec3* v = &scene.positions[3 * t];
+                if (intersect_watertight(ray, w, v[0], v[1], v[2], tt, uu, vv)) {
+                    any = true;
+                    if (tt < best.t) {
+                        best = Hit<float>{tt, uu, vv, std::int32_t(t)};
+                        ray.tmax = tt;
+                    }
+                }
+            }
+            if (i < 1000) {
+                ASSERT_EQ(closest[i].triangle, best.triangle) << what << " ray " << i;
+                if (best.valid()) ASSERT_EQ(bits(closest[i].t), bits(best.t)) << what << " ray " << i;
+                hits += best.valid();
+            } else {
+                ASSERT_EQ(occluded[i - 1000], any ? 1u : 0u) << what << " shadow ray " << i;
+            }
+        }
+        EXPECT_GT(hits, 500u) << what;
+        EXPECT_LE(h.stats[2].local_tests, h.stats[2].brute_force_tests);
+    }
+}
+
+TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
+    gpu::test_context();
+    const Scene cornell = scene_at("cornell");
+    expect_brute_force_answers(cornell, "cornell");
+    expect_brute_force_answers(transformed(cornell, 1e3f, glm::vec3(3e6f, -1e6f, 2e6f)), "cornell x1e3 at 3e6");
+    expect_brute_force_answers(transformed(cornell, 1e-4f, glm::vec3(1e-3f)), "cornell x1e-4");
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The renderer against stage 02.
+
+RenderSettings small_settings(const Scene& s) {
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.effects = analyze_effects(s);
+    settings.record_hits = true;
+    return settings;
+}
+
+FrameResult render_rh(const Scene& s, const RenderSettings& settings, HierarchyOptions o) {
+    RayHierarchyRenderer renderer;
+    renderer.hierarchy_options = o;
+    return renderer.render(s, settings);
+}
+
+void expect_same_frame(const FrameResult& a, const FrameResult& b, const std::string& what) {
+    ASSERT_EQ(a.image.pixels.size(), b.image.pixels.size()) << what;
+    for (std::size_t i = 0; i < a.image.pixels.size(); ++i) ASSERT_EQ(a.image.pixels[i], b.image.pixels[i]) << what;
+    for (int k = 0; k < 4; ++k) ASSERT_EQ(a.stats.counters.rays[k], b.stats.counters.rays[k]) << what;
+    ASSERT_EQ(a.hits.size(), b.hits.size()) << what;
+    for (std::size_t i = 0; i < a.hits.size(); ++i) {
+        ASSERT_EQ(a.hits[i].pixel, b.hits[i].pixel) << what << " ray " << i;
+        ASSERT_EQ(a.hits[i].kind_light, b.hits[i].kind_light) << what << " ray " << i;
+        ASSERT_EQ(a.hits[i].triangle, b.hits[i].triangle) << what << " ray " << i;
+        ASSERT_EQ(bits(a.hits[i].t), bits(b.hits[i].t)) << what << " ray " << i;
+    }
+}
+
+TEST(RayHierarchyRenderer, CornellEqualsStage02ForEveryBranchingAndALevelLimit) {
+    gpu::test_context();
+    const Scene s = scene_at("cornell");
+    const RenderSettings settings = small_settings(s);
+    HybridRenderer stage02;
+    const FrameResult reference = stage02.render(s, settings);
+    for (const HierarchyOptions o : {HierarchyOptions{4, 0, true}, HierarchyOptions{8, 0, true},
+                                     HierarchyOptions{16, 0, true}, HierarchyOptions{8, 2, true},
+                                     HierarchyOptions{4, 1, false}}) {
+        const FrameResult r = render_rh(s, settings, o);
+        const std::string what = "B=" + std::to_string(o.branching) + " levels " + std::to_string(o.levels);
+        expect_same_frame(r, reference, what);
+        const auto& refl = r.extra["ray_hierarchy"]["kinds"]["reflection"];
+        // At 64x48 neighbouring rays diverge: B = 4 still skips most tests, B = 16 fewer (see README.md).
+        EXPECT_LT(double(refl["percent_of_brute_force"]), o.branching == 4 ? 25.0 : 75.0) << what;
+        if (o.levels > 0) EXPECT_EQ(refl["levels"].size(), std::size_t(o.levels) + 1) << what;
+        EXPECT_LT(r.stats.counters.intersection_tests, reference.stats.counters.intersection_tests) << what;
+    }
+}
+
+TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
+    gpu::test_context();
+    for (float time : {0.0f, 0.5f}) {
+        const Scene s = scene_at("dynamic", time);
+        const RenderSettings settings = small_settings(s);
+        HybridRenderer stage02;
+        expect_same_frame(render_rh(s, settings, {}), stage02.render(s, settings), "dynamic t=" + std::to_string(time));
+    }
+}
+
+std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {
+    std::sort(hits.begin(), hits.end(), [](const HitRecord& a, const HitRecord& b) {
+        return std::tie(a.pixel, a.sample, a.path, a.kind_light) < std::tie(b.pixel, b.sample, b.path, b.kind_light);
+    });
+    return hits;
+}
+
+// Pair buffers of 256 entries and a hit list of 2 entries per ray: the traversal runs in many chunks and windows and
+// the hit list fills up and is pruned; the frame is the same, pair for pair, and so are the tests counted.
+TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
+    gpu::test_context();
+    const Scene s = scene_at("cornell");
+    const RenderSettings settings = small_settings(s);
+    const FrameResult reference = render_rh(s, settings, {});
+    HierarchyOptions tiny_options;
+    tiny_options.pair_capacity = 256;
+    tiny_options.hit_list_per_ray = 2;
+    const FrameResult tiny = render_rh(s, settings, tiny_options);
+    expect_same_frame(tiny, reference, "256 pairs per buffer");
+    EXPECT_EQ(tiny.stats.counters.intersection_tests, reference.stats.counters.intersection_tests);
+    const auto& t = tiny.extra["ray_hierarchy"];
+    const auto& r = reference.extra["ray_hierarchy"];
+    EXPECT_EQ(t["pair_capacity"], 256);
+    EXPECT_GT(std::uint64_t(t["windows"]), 10 * std::uint64_t(r["windows"]));
+    EXPECT_GT(std::uint64_t(t["hit_list_prunes"]), 0u);
+    for (const char* kind : {"shadow", "reflection", "refraction"})
+        for (const char* key : {"node_tests", "local_tests", "fold_tests"})
+            EXPECT_EQ(t["kinds"][kind][key], r["kinds"][kind][key]) << kind << " " << key;
+}
+
+// $RT_MAX_SSBO_BYTES = 48 KiB: the pipeline's batches, and the stage's buffers with them, shrink (3072 pairs). The
+// frame equals stage 02's under the same limit, hit for hit in the same order, and the unlimited frame's image.
+TEST(RayHierarchyRenderer, ATinyStorageLimitGivesStage02sFrame) {
+    gpu::test_context();
+    const Scene s = scene_at("cornell");
+    const RenderSettings settings = small_settings(s);
+    const FrameResult unlimited = render_rh(s, settings, {});
+    ::setenv("RT_MAX_SSBO_BYTES", "49152", 1);
+    const FrameResult tiny = render_rh(s, settings, {});
+    HybridRenderer stage02;
+    const FrameResult tiny02 = stage02.render(s, settings);
+    ::unsetenv("RT_MAX_SSBO_BYTES");
+    expect_same_frame(tiny, tiny02, "04 vs 02 at 48 KiB");
+    EXPECT_EQ(tiny.extra["ray_hierarchy"]["pair_capacity"], 3072);
+    for (std::size_t i = 0; i < tiny.image.pixels.size(); ++i)
+        ASSERT_EQ(tiny.image.pixels[i], unlimited.image.pixels[i]) << "pixel " << i;
+    const auto a = sorted_by_ray(tiny.hits), b = sorted_by_ray(unlimited.hits);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].triangle, b[i].triangle) << "ray " << i;
+        ASSERT_EQ(bits(a[i].t), bits(b[i].t)) << "ray " << i;
+    }
+}
+
+}  // namespace
+}  // namespace rt

@@ -1,0 +1,112 @@
+#include "ray_hierarchy_renderer.h"
+
+#include <CLI/CLI.hpp>
+
+#include "common/app/options.h"
+
+namespace rt {
+
+namespace {
+const char* const kKindNames[4] = {"primary", "shadow", "reflection", "refraction"};
+}  // namespace
+
+RayHierarchyRenderer::RayHierarchyRenderer()
+    : GpuStage({"common/brute_force.glsl", {}, {},
+                [this](const gpu::BatchTraceInputs& in) { trace_batch(in, false); },
+                [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); }}) {}
+RayHierarchyRenderer::~RayHierarchyRenderer() = default;
+
+void RayHierarchyRenderer::add_options(CLI::App& app) {
+    GpuStage::add_options(app);
+    app.add_option("--branching", hierarchy_options.branching, "Children per node of the ray hierarchy: 4, 8 or 16")
+        ->capture_default_str()
+        ->check(CLI::IsMember({4, 8, 16}));
+    app.add_option("--levels", hierarchy_options.levels,
+                   "Upper levels of the hierarchy used above the rays (0 = all, up to a single root)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 32));
+    app.add_option_function<std::string>(
+           "--object-culling", [this](const std::string& s) { hierarchy_options.object_culling = s == "on"; },
+           "Test the top nodes against whole objects before their triangles: on (default) or off")
+        ->check(CLI::IsMember({"on", "off"}));
+}
+
+void RayHierarchyRenderer::build(const Scene& scene, const RenderSettings&) {
+    if (!hierarchy_) hierarchy_ = std::make_unique<GpuRayHierarchy>();
+    hierarchy_->options = hierarchy_options;
+    hierarchy_->timer = &timer();
+    hierarchy_->reset_stats();
+    traced_ = false;
+    // The only per-frame work on the geometry: the triangles' and objects' bounding spheres.
+    auto scope = timer().scope("build");
+    hierarchy_->prepare(gpu_scene(), object_ranges(scene.material_ids));
+}
+
+void RayHierarchyRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
+    traced_ = true;
+    hierarchy_->trace(in, shadow);
+}
+
+void RayHierarchyRenderer::render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) {
+    rasterize_and_shade_sample(scene, settings, offset);
+}
+
+std::vector<std::string> RayHierarchyRenderer::stage_programs() const {
+    std::vector<std::string> programs = {"raster/primary_hits.comp"};
+    for (std::string& p : GpuRayHierarchy::program_names()) programs.push_back(std::move(p));
+    return programs;
+}
+
+void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
+    const HierarchyOptions& o = hierarchy_options;
+    nlohmann::json rh = {{"branching", o.branching},
+                         {"levels_limit", o.levels},
+                         {"object_culling", o.object_culling},
+                         {"traced", traced_},
+                         {"pair_capacity", hierarchy_->capacity()},
+                         {"chunks", hierarchy_->chunks},
+                         {"windows", hierarchy_->windows},
+                         {"fold_rounds", hierarchy_->fold_rounds},
+                         {"hit_list_prunes", hierarchy_->prunes}};
+    const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
+    auto ms = [&](const std::string& name) { return pass_ms.contains(name) ? double(pass_ms[name]) : 0.0; };
+    nlohmann::json kinds = nlohmann::json::object();
+    for (int k = 1; k < 4; ++k) {
+        const HierarchyKindStats& s = hierarchy_->stats[k];
+        if (s.rays == 0) continue;
+        nlohmann::json levels = nlohmann::json::array();
+        for (std::size_t l = 0; l < s.levels.size(); ++l) {
+            const HierarchyLevelStats& L = s.levels[l];
+            levels.push_back({{"level", l},
+                              {"nodes", L.nodes},
+                              {"pairs_in", L.pairs_in},
+                              {"pairs_out", l == 0 ? nlohmann::json(nullptr) : nlohmann::json(L.pairs_out)},
+                              {"node_tests", l == 0 ? 0 : L.pairs_in},
+                              {"local_tests", l == 0 ? L.pairs_in : 0}});
+        }
+        const std::uint64_t tests = s.local_tests + s.fold_tests;
+        const std::string kind = kKindNames[k];
+        kinds[kind] = {
+            {"rays", s.rays},
+            {"groups", s.groups},
+            {"levels", levels},
+            {"object_level", {{"pairs_in", s.object_pairs_in}, {"pairs_out", s.object_pairs_out}}},
+            {"node_tests", s.node_tests()},
+            {"local_tests", s.local_tests},
+            {"fold_tests", s.fold_tests},
+            {"tests_per_ray", double(tests) / double(s.rays)},
+            {"node_tests_per_ray", double(s.node_tests()) / double(s.rays)},
+            {"brute_force_tests", s.brute_force_tests},
+            {"percent_of_brute_force",
+             s.brute_force_tests ? 100.0 * double(tests) / double(s.brute_force_tests) : 0.0},
+            {"time_ms",
+             {{"build", ms("rh_build." + kind)},
+              {"traverse", ms("rh_traverse." + kind)},
+              {"local_tests", ms("rh_local." + kind)}}}};
+    }
+    rh["kinds"] = kinds;
+    rh["fold_ms"] = ms("rh_local.fold");   // the closest-hit fold of reflection and refraction batches together
+    result.extra["ray_hierarchy"] = rh;
+}
+
+}  // namespace rt

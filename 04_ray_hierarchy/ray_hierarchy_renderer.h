@@ -1,0 +1,39 @@
+// Stage 04: the ray-space hierarchy (Roger, Assarsson & Holzschuch 2007). Primary visibility is stage 02's G-buffer;
+// every bounce of secondary rays (shadow, reflection, refraction) is traced through a hierarchy built over that
+// bounce's own rays (gpu_ray_hierarchy.h), through the wavefront pipeline's batch hook (Traversal::trace_batch and
+// shadow_batch). Nothing is built over the triangles but their bounding spheres, so a moving scene costs nothing
+// extra. The image and every hit equal brute force's (stage 02's).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/gpu/gpu_stage.h"
+#include "gpu_ray_hierarchy.h"
+
+namespace rt {
+
+class RayHierarchyRenderer : public gpu::GpuStage {
+public:
+    RayHierarchyRenderer();
+    ~RayHierarchyRenderer() override;
+
+    void add_options(CLI::App& app) override;   // the GPU options, --branching, --levels, --object-culling
+    HierarchyOptions hierarchy_options;
+
+protected:
+    void build(const Scene& scene, const RenderSettings& settings) override;
+    void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
+    bool rasterizes_primary_rays() const override { return true; }
+    std::vector<std::string> stage_programs() const override;
+    void add_stage_stats(FrameResult& result) override;
+
+private:
+    void trace_batch(const gpu::BatchTraceInputs& in, bool shadow);
+
+    std::unique_ptr<GpuRayHierarchy> hierarchy_;   // created with the first frame (needs the context)
+    bool traced_ = false;                          // whether any secondary ray was traced this frame
+};
+
+}  // namespace rt

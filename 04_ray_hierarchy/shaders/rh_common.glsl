@@ -1,0 +1,131 @@
+// The ray-space hierarchy's nodes and its conservative test (Roger, Assarsson & Holzschuch 2007, section 4), shared
+// by every pass of the stage. C++ twin: ray_hierarchy.h / ray_hierarchy.cpp (the same formulas; tests check both).
+//
+// A node bounds a set of rays with 8 floats: a sphere (centre, radius) holding every origin and a cone (unit axis,
+// spread angle) holding every direction. A leaf is one ray: radius 0 at its origin, spread 0 along its direction.
+// radius < 0 marks an empty node (only rays with zero-length or non-finite directions or origins below it: such rays
+// never hit anything in the exact test, so they are left out).
+#include "wavefront/wavefront.glsl"
+
+// The stage's SSBO bindings, from WF_BINDING_TRAVERSAL_FIRST (24) to 31 (Mesa allows 32 binding points; each pass
+// uses a few). The leaf and fold passes reuse two points for their own buffers.
+#define RH_BINDING_NODES (WF_BINDING_TRAVERSAL_FIRST + 0)     // RhNode[] of the levels being built or tested
+#define RH_BINDING_SPHERES (WF_BINDING_TRAVERSAL_FIRST + 1)   // vec4 per triangle: its bounding sphere
+#define RH_BINDING_OBJECTS (WF_BINDING_TRAVERSAL_FIRST + 2)   // RhObject[]: runs of triangles and their spheres
+#define RH_BINDING_PAIRS (WF_BINDING_TRAVERSAL_FIRST + 3)     // uvec2[] (node, item) candidate pairs read
+#define RH_BINDING_PAIRS_OUT (WF_BINDING_TRAVERSAL_FIRST + 4) // uvec2[] pairs written by the expansion
+#define RH_BINDING_COUNTS (WF_BINDING_TRAVERSAL_FIRST + 5)    // uint[] per tested pair: children to expand, or 0
+#define RH_BINDING_OFFSETS (WF_BINDING_TRAVERSAL_FIRST + 6)   // uint[] exclusive scan of the work groups' sums
+#define RH_BINDING_INFO (WF_BINDING_TRAVERSAL_FIRST + 7)      // uint[8]: survivors, hit-list size, fold flag,
+                                                              // scan total, fold tests per ray kind
+#define RH_BINDING_GROUP_SUMS RH_BINDING_PAIRS_OUT            // test pass: each work group's sum of counts
+#define RH_BINDING_HITS RH_BINDING_PAIRS_OUT                  // leaf and fold passes: the hit list
+#define RH_BINDING_STATE RH_BINDING_COUNTS                    // leaf and fold passes: per-ray closest-hit state
+
+// Relative padding of every bound and test (section "Conservative in floats" of README.md): 1e-4 is about 800 float
+// ulps, far above the few ulps each formula loses and the error of GPU sin/cos/atan (~1e-6 absolute).
+#define RH_PAD 1e-4
+// A spread at or beyond this is taken as all directions (the cone test then accepts everything).
+#define RH_ALL_DIRECTIONS 3.1415
+
+struct RhNode {
+    vec4 sphere;   // centre, radius (< 0: empty)
+    vec4 cone;     // unit axis, spread angle in radians (>= RH_ALL_DIRECTIONS: every direction)
+};
+
+struct RhObject {
+    vec4 sphere;   // bounds the spheres of triangles [first, first + count)
+    uint first, count, pad0, pad1;
+};
+
+float rh_max_abs(vec3 v) { return max(abs(v.x), max(abs(v.y), abs(v.z))); }
+bool rh_finite(vec3 v) { return rt_isfinite(v.x) && rt_isfinite(v.y) && rt_isfinite(v.z); }
+
+RhNode rh_empty_node() { return RhNode(vec4(0.0, 0.0, 0.0, -1.0), vec4(1.0, 0.0, 0.0, 0.0)); }
+
+// A leaf. The direction is scaled by its largest component before normalizing, so tiny and huge directions
+// normalize without underflow or overflow.
+RhNode rh_leaf(vec3 origin, vec3 direction) {
+    const float m = rh_max_abs(direction);
+    if (!rh_finite(origin) || !rh_finite(direction) || !(m > 0.0)) return rh_empty_node();
+    return RhNode(vec4(origin, 0.0), vec4(normalize(direction / m), 0.0));
+}
+
+// The angle between two unit vectors, accurate near 0 and pi (atan of |a x b| and a . b, not acos).
+float rh_angle(vec3 a, vec3 b) { return atan(length(cross(a, b)), dot(a, b)); }
+
+// The union of up to 16 children (RhNode kids[16], the first `count` used; empty ones skipped):
+//  - sphere: centre = middle of the box of the children's centres; radius = max |c_i - c| + r_i (triangle
+//    inequality: every origin within r_i of c_i is within that of c);
+//  - cone: axis = normalized sum of the children's axes (the first child's axis if the sum is zero, e.g. two opposite
+//    rays); spread = max angle(axis, a_i) + spread_i. This holds for ANY axis (triangle inequality of angles on the
+//    sphere), so opposite directions merely give a spread of pi or more, which means every direction.
+// Identical rays give radius 0 (plus the padding) and spread 0; a single child gives itself padded; a last node with
+// fewer than B children (counts that are not a power of B) uses just those.
+// Both are then padded by RH_PAD relatively (plus RH_PAD of the coordinates' size for the rounding of c_i - c), so
+// the float rounding of these few operations can only make a node larger than the exact union.
+RhNode rh_union(RhNode kids[16], uint count) {
+    vec3 lo = vec3(RT_INFINITY), hi = vec3(-RT_INFINITY), axis_sum = vec3(0.0), first_axis = vec3(1.0, 0.0, 0.0);
+    bool any = false, all_directions = false;
+    for (uint i = 0u; i < count; ++i) {
+        if (!(kids[i].sphere.w >= 0.0)) continue;
+        if (!any) first_axis = kids[i].cone.xyz;
+        any = true;
+        lo = min(lo, kids[i].sphere.xyz);
+        hi = max(hi, kids[i].sphere.xyz);
+        axis_sum += kids[i].cone.xyz;
+        all_directions = all_directions || kids[i].cone.w >= RH_ALL_DIRECTIONS;
+    }
+    if (!any) return rh_empty_node();
+    const vec3 c = 0.5 * lo + 0.5 * hi;   // not (lo + hi) / 2: no overflow for huge coordinates
+    const float len = length(axis_sum);
+    const vec3 axis = (len > 0.0 && rt_isfinite(len)) ? axis_sum / len : first_axis;
+    float radius = 0.0, spread = 0.0;
+    for (uint i = 0u; i < count; ++i) {
+        if (!(kids[i].sphere.w >= 0.0)) continue;
+        radius = max(radius, length(kids[i].sphere.xyz - c) + kids[i].sphere.w);
+        spread = max(spread, rh_angle(axis, kids[i].cone.xyz) + kids[i].cone.w);
+    }
+    radius = radius * (1.0 + RH_PAD) + RH_PAD * max(rh_max_abs(c), rh_max_abs(hi - lo)) + 1e-30;
+    spread = spread * (1.0 + RH_PAD) + RH_PAD;
+    if (all_directions || !(spread < RH_ALL_DIRECTIONS)) spread = 3.14159274;   // every direction (also NaN)
+    return RhNode(vec4(c, radius), vec4(axis, spread));
+}
+
+// A triangle's bounding sphere: the middle of its box, and the largest distance to a vertex, padded as above so that
+// it also holds every point the exact ray/triangle test may report a hit at (that test's rounding is a few ulps of
+// the coordinates, covered by RH_PAD times their size).
+vec4 rh_triangle_sphere(vec3 a, vec3 b, vec3 c) {
+    const vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
+    const vec3 m = 0.5 * lo + 0.5 * hi;
+    const float r = max(length(a - m), max(length(b - m), length(c - m)));
+    return vec4(m, r * (1.0 + RH_PAD) + RH_PAD * max(rh_max_abs(m), rh_max_abs(hi - lo)) + 1e-30);
+}
+
+// Can some ray of the node hit something inside sphere s? Every ray is o + t d with |o - c| <= r and d within the
+// cone, so its points lie in the sphere (c, r) swept along the cone K: within r of c + K. The sphere s is out of
+// reach when the distance from q = s.centre - c to K exceeds r + s.radius. For q at angle phi from the axis and a
+// spread theta, that distance is 0 when phi <= theta, |q| when phi - theta >= 90 degrees (the apex is closest), and
+// |q| sin(phi - theta) between; with A = q . axis = |q| cos(phi) and B = |q x axis| = |q| sin(phi), no acos is
+// needed: |q| sin(phi - theta) = B cos(theta) - A sin(theta), |q| cos(phi - theta) = A cos(theta) + B sin(theta).
+// Rejects only when every comparison says so: NaN or overflow (huge coordinates) keep the pair.
+bool rh_may_hit(RhNode node, vec4 s) {
+    if (!(node.sphere.w >= 0.0)) return false;   // empty node: no ray to test
+    if (node.cone.w >= RH_ALL_DIRECTIONS) {
+        // Every direction: the rays reach everything (the origins' sphere is then the only bound, and it does not
+        // limit where a ray can go). Keep the pair.
+        return true;
+    }
+    const vec3 q = s.xyz - node.sphere.xyz;
+    const float q_len = length(q);
+    const float reach = node.sphere.w + s.w;
+    const float margin = RH_PAD * (q_len + reach + rh_max_abs(node.sphere.xyz) + rh_max_abs(s.xyz));
+    const float A = dot(q, node.cone.xyz);
+    const float B = length(cross(q, node.cone.xyz));
+    const float ct = cos(node.cone.w), st = sin(node.cone.w);
+    const float sin_part = B * ct - A * st;   // |q| sin(phi - theta)
+    const float cos_part = A * ct + B * st;   // |q| cos(phi - theta)
+    const float dist = cos_part <= 0.0 ? q_len : sin_part;
+    const bool far = sin_part > 0.0 && dist > reach + margin;
+    return !far;
+}
