@@ -33,6 +33,7 @@ RayKeyLayout make_key_layout(glm::vec3 box_min, glm::vec3 box_max, unsigned key_
                                     std::to_string(key_bits));
     RayKeyLayout layout;
     layout.box_min = box_min;
+    layout.key_bits = key_bits;
     const unsigned origin = key_bits - direction_bits;
     for (unsigned a = 0; a < 3; ++a) {
         layout.origin_bits[a] = origin / 3 + (a < origin % 3 ? 1 : 0);
@@ -88,8 +89,11 @@ std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) 
     const glm::uvec3 dc{octahedral_cell(nu, s, layout.direction_bits.x), octahedral_cell(nv, s, layout.direction_bits.y),
                         0u};
     const unsigned direction_total = layout.direction_bits.x + layout.direction_bits.y;
-    const std::uint32_t hash = shift_left(interleave3(oc, layout.origin_bits), direction_total) |
-                               interleave3(dc, {layout.direction_bits, 0u});
+    const std::uint32_t origin_code = interleave3(oc, layout.origin_bits);
+    const std::uint32_t direction_code = interleave3(dc, {layout.direction_bits, 0u});
+    const std::uint32_t hash = layout.direction_major
+                                   ? shift_left(direction_code, layout.key_bits - direction_total) | origin_code
+                                   : shift_left(origin_code, direction_total) | direction_code;
     const std::uint32_t kept = layout.hash_drop >= 32 ? 0u : hash >> layout.hash_drop;
     return shift_left(ray_group(ray, layout), layout.hash_bits) | kept;
 }

@@ -46,6 +46,8 @@ void RaySorter::compute_keys(const gpu::Buffer& rays, std::size_t first, std::si
     p.set("rs_hash_drop", layout.hash_drop);
     p.set("rs_hash_bits", layout.hash_bits);
     p.set("rs_group_count", layout.group_count);
+    p.set("rs_key_bits", layout.key_bits);
+    p.set("rs_direction_major", layout.direction_major ? 1u : 0u);
     p.set("rs_first", unsigned(first));
     p.set("rs_count", unsigned(count));
     rays.bind_range(kBinding[0], 0, (first + count) * sizeof(gpu::WavefrontRay));

@@ -47,10 +47,14 @@ TEST(RaySorter, KeysEqualTheCpuKeysBitForBit) {
     const std::vector<gpu::WavefrontRay> rays = random_rays(5000, 1, 3);
     const Buffer buffer = Buffer::from(rays);
     for (auto [key_bits, direction_bits] : {std::pair{30u, 12u}, {32u, 16u}, {20u, 0u}, {16u, 16u}, {7u, 5u}}) {
-        sorter.layout = make_key_layout({-1, -0.5f, -1}, {1, 0.5f, 1.25f}, key_bits, direction_bits, 3);
-        sorter.compute_keys(buffer, 123, 4321);
-        EXPECT_EQ(sorter.keys().download<std::uint32_t>(4321), cpu_keys(rays, sorter.layout, 123, 4321))
-            << "key bits " << key_bits << ", direction bits " << direction_bits;
+        for (bool direction_major : {false, true}) {
+            sorter.layout = make_key_layout({-1, -0.5f, -1}, {1, 0.5f, 1.25f}, key_bits, direction_bits, 3);
+            sorter.layout.direction_major = direction_major;
+            sorter.compute_keys(buffer, 123, 4321);
+            EXPECT_EQ(sorter.keys().download<std::uint32_t>(4321), cpu_keys(rays, sorter.layout, 123, 4321))
+                << "key bits " << key_bits << ", direction bits " << direction_bits << ", direction major "
+                << direction_major;
+        }
     }
 }
 

@@ -65,6 +65,7 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     BatchStats& stats = batch_stats_[shadow ? 1 : 0];
     {
         auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
+        sorter_->layout.direction_major = !shadow;   // ray_keys.h: which order suits which rays
         sorter_->sort(in.rays, in.first, n, order_);
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
         gather_.set("rs_count", unsigned(n));
@@ -113,7 +114,8 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
                      {"octahedral_bits", {L.direction_bits.x, L.direction_bits.y}},
                      {"groups", L.group_count},
                      {"hash_bits_dropped", L.hash_drop},
-                     {"sort_bits", L.sort_bits}};
+                     {"sort_bits", L.sort_bits},
+                     {"order", {{"shadow", "origin first"}, {"trace", "direction first"}}}};
         const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
         nlohmann::json batches = nlohmann::json::object();
         for (int k = 0; k < 2; ++k) {

@@ -30,6 +30,8 @@ uniform uint rs_direction_total;   // rs_direction_bits.x + rs_direction_bits.y
 uniform uint rs_hash_drop;         // low hash bits given up so the group fits in 32 bits
 uniform uint rs_hash_bits;         // hash bits kept (above them: the group)
 uniform uint rs_group_count;       // 3 + lights
+uniform uint rs_key_bits;          // origin + direction bits
+uniform uint rs_direction_major;   // 1: the direction cell above the origin cell
 
 // ray_keys.cpp: quantize_axis. Cell of one origin coordinate in the virtual grid; outside the box clamps.
 uint rs_quantize_axis(float o, float box_min, float scale, uint bits) {
@@ -86,8 +88,11 @@ uint rs_ray_key(RsRay r) {
         nv = (s - abs(d.x)) * (d.y >= 0.0 ? 1.0 : -1.0);
     }
     const uvec3 dc = uvec3(rs_octahedral_cell(nu, s, rs_direction_bits.x), rs_octahedral_cell(nv, s, rs_direction_bits.y), 0u);
-    const uint hash = rs_shift_left(rs_interleave3(oc, rs_origin_bits), rs_direction_total) |
-                      rs_interleave3(dc, uvec3(rs_direction_bits, 0u));
+    const uint origin_code = rs_interleave3(oc, rs_origin_bits);
+    const uint direction_code = rs_interleave3(dc, uvec3(rs_direction_bits, 0u));
+    const uint hash = rs_direction_major != 0u
+                          ? rs_shift_left(direction_code, rs_key_bits - rs_direction_total) | origin_code
+                          : rs_shift_left(origin_code, rs_direction_total) | direction_code;
     const uint kept = rs_hash_drop >= 32u ? 0u : hash >> rs_hash_drop;
     return rs_shift_left(rs_group(r), rs_hash_bits) | kept;
 }
