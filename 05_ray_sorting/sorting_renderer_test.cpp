@@ -1,6 +1,7 @@
 // Stage 05's renderer: sorting changes the cost of the hierarchy, never the frame.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 
 #include "common/gpu/gpu_test_context.h"
@@ -37,7 +38,9 @@ FrameResult render_05(const Scene& s, int width, int height, SortOptions sort) {
 
 // Image, ray counts and every hit (in the pipeline's order) equal bit for bit; the sorted frame really sorted.
 // `compresses`: neighbouring shadow rays share keys (not so where the pixels' footprints exceed the key's cells).
-void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, int width, int height, bool compresses) {
+// `shadow_batches`, when given, gets how many shadow batches were sorted.
+void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, int width, int height, bool compresses,
+                                     std::uint64_t* shadow_batches = nullptr) {
     const Scene s = scene_at(name);
     SortOptions off = on;
     off.sort = false;
@@ -64,6 +67,7 @@ void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, in
     // The same rays, a different hierarchy: the tests counted differ (that is the point of sorting).
     EXPECT_NE(a.extra["ray_hierarchy"]["kinds"]["shadow"]["local_tests"],
               b.extra["ray_hierarchy"]["kinds"]["shadow"]["local_tests"]) << name;
+    if (shadow_batches) *shadow_batches = std::uint64_t(shadow["batches"]);
 }
 
 TEST(RaySortingRenderer, SortOnAndOffGiveTheSameImageHitsAndRayCounts) {
@@ -74,6 +78,18 @@ TEST(RaySortingRenderer, SortOnAndOffGiveTheSameImageHitsAndRayCounts) {
     coarse.key_bits = 9;   // few, large cells: long chunks
     coarse.direction_bits = 3;
     expect_same_frame_sorted_or_not("whitted", coarse, 64, 48, true);
+}
+
+// $RT_MAX_SSBO_BYTES = 48 KiB: the pipeline hands over many small batches (each sorted on its own); still the
+// same frame.
+TEST(RaySortingRenderer, ManySmallBatchesUnderATinyStorageLimitGiveTheSameFrame) {
+    gpu::test_context();
+    std::uint64_t batches = 0, small_batches = 0;
+    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true, &batches);
+    ::setenv("RT_MAX_SSBO_BYTES", "49152", 1);
+    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true, &small_batches);
+    ::unsetenv("RT_MAX_SSBO_BYTES");
+    EXPECT_GT(small_batches, 2 * batches);
 }
 
 }  // namespace
