@@ -322,6 +322,56 @@ TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
     }
 }
 
+// The stats add up, on one group of rays (one hierarchy): the top level tests every node with every triangle (no
+// object culling), each level's pairs come from the survivors above (at most B each), the leaves' pairs are the
+// local tests, and the percentage is theirs.
+TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
+    gpu::test_context();
+    const Scene scene = scene_at("cornell");
+    gpu::GpuScene gpu_scene;
+    gpu_scene.upload(scene);
+    RenderSettings settings;
+    settings.effects = analyze_effects(scene);
+    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
+    wavefront.begin_frame(gpu_scene, settings);
+    std::mt19937 g(3);
+    std::vector<gpu::WavefrontRay> rays;
+    const glm::vec3 centre = scene.bounds.center();
+    const glm::vec3 d = ray_sets::unit(g);
+    for (int i = 0; i < 1000; ++i) {   // a coherent beam: rays from a small patch, within ~10 degrees
+        gpu::WavefrontRay r{};
+        r.origin = centre + 0.01f * ray_sets::unit(g);
+        r.direction = glm::normalize(d + 0.15f * ray_sets::unit(g));
+        r.tmax = INFINITY;
+        r.depth_kind = 2u << 16 | 1u;
+        rays.push_back(r);
+    }
+    const gpu::Buffer ray_buffer = gpu::Buffer::from(rays);
+    gpu::Buffer results(rays.size() * sizeof(gpu::WavefrontTraceResult));
+    for (int b : {4, 8, 16}) {
+        GpuRayHierarchy h;
+        h.options = HierarchyOptions{b, 0, false};
+        h.prepare(gpu_scene, object_ranges(scene.material_ids));
+        h.trace({ray_buffer, 0, rays.size(), results, nullptr, wavefront}, false);
+        const HierarchyKindStats& k = h.stats[2];
+        ASSERT_EQ(k.groups, 1u);
+        const std::size_t top = k.levels.size() - 1;
+        EXPECT_EQ(k.levels[top].nodes, 1u);
+        EXPECT_EQ(k.levels[top].pairs_in, scene.triangle_count());
+        std::uint64_t node_tests = 0;
+        for (std::size_t l = 1; l <= top; ++l) {
+            EXPECT_LE(k.levels[l].pairs_out, k.levels[l].pairs_in) << "B=" << b << " level " << l;
+            EXPECT_LE(k.levels[l - 1].pairs_in, std::uint64_t(b) * k.levels[l].pairs_out) << "B=" << b << " " << l;
+            EXPECT_GE(k.levels[l - 1].pairs_in, k.levels[l].pairs_out) << "B=" << b << " level " << l;
+            node_tests += k.levels[l].pairs_in;
+        }
+        EXPECT_EQ(k.node_tests(), node_tests);
+        EXPECT_EQ(k.local_tests, k.levels[0].pairs_in);
+        EXPECT_EQ(k.brute_force_tests, rays.size() * scene.triangle_count());
+        EXPECT_LT(k.local_tests * 10, k.brute_force_tests) << "B=" << b;   // a coherent beam culls well
+    }
+}
+
 std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {
     std::sort(hits.begin(), hits.end(), [](const HitRecord& a, const HitRecord& b) {
         return std::tie(a.pixel, a.sample, a.path, a.kind_light) < std::tie(b.pixel, b.sample, b.path, b.kind_light);
