@@ -1,5 +1,8 @@
 #include "ray_sort.h"
 
+#include <algorithm>
+#include <string>
+
 #include "common/gpu/bindings.h"
 
 namespace rt {
