@@ -28,9 +28,10 @@ protected:
     bool rasterizes_primary_rays() const override { return true; }
     std::vector<std::string> stage_programs() const override;
     void add_stage_stats(FrameResult& result) override;
+    // One batch of the pipeline through the hierarchy (stage 05 overrides it to sort the batch's rays first).
+    virtual void trace_batch(const gpu::BatchTraceInputs& in, bool shadow);
 
 private:
-    void trace_batch(const gpu::BatchTraceInputs& in, bool shadow);
 
     std::unique_ptr<GpuRayHierarchy> hierarchy_;   // created with the first frame (needs the context)
     bool traced_ = false;                          // whether any secondary ray was traced this frame

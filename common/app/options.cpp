@@ -41,7 +41,7 @@ CLI::Validator number_in(double lo, double hi, bool exclusive_lo) {
 }
 
 void add_shared_options(CLI::App& app, Options& o) {
-    app.add_option("--scene", o.scene, "builtin:NAME (whitted, cornell, diffuse, dynamic, spheres:N, far) or a .gltf/.glb file")
+    app.add_option("--scene", o.scene, "builtin:NAME (whitted, cornell, diffuse, dynamic, spheres:N, far, mirror_box, office) or a .gltf/.glb file")
         ->capture_default_str();
     app.add_option("--width", o.render.width, "Image width in pixels")->capture_default_str()->check(number_in(1, 16384));
     app.add_option("--height", o.render.height, "Image height in pixels")->capture_default_str()->check(number_in(1, 16384));

@@ -15,6 +15,8 @@ namespace rt {
 //   dynamic  Objects that move over time (glTF animations), for --frames.
 //   spheres:N  N tessellated spheres on a floor, for scaling tests.
 //   far      The whitted scene and its camera translated by (1e4, 1e4, 1e4): a fixed epsilon offset fails there.
+//   mirror_box  A 440-triangle object inside a closed box of six mirrors: reflection-heavy (stage 05's table).
+//   office   A furnished room, 25,424 triangles in 330 meshes, one light: shadow-heavy (stage 05's table).
 std::vector<std::string> builtin_scene_names();
 
 // Throws SceneError for an unknown name or a bad count.

@@ -144,6 +144,53 @@ TEST(BuiltinScenes, CornellWallsFaceInwardAndFloorIsWellExposed) {
     EXPECT_LT(floor, 1.0f);
 }
 
+// Inside the box lo..hi, away from its faces.
+bool strictly_inside(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
+    return glm::all(glm::greaterThan(p, lo)) && glm::all(glm::lessThan(p, hi));
+}
+
+TEST(BuiltinScenes, MirrorBoxIsAnObjectOfSeveralHundredTrianglesInsideSixMirrorsFacingIn) {
+    const SceneAsset a = make_builtin_scene("mirror_box");
+    const Scene s = flatten(a, {});
+    const glm::vec3 lo = s.bounds.lo, hi = s.bounds.hi, inside = 0.5f * (lo + hi);
+    std::size_t wall_triangles = 0;
+    for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+        const glm::vec3 p = s.positions[3 * t], q = s.positions[3 * t + 1], r = s.positions[3 * t + 2];
+        bool on_wall = false;   // all three corners on one face of the box
+        for (int k = 0; k < 3; ++k)
+            for (float face : {lo[k], hi[k]}) on_wall |= p[k] == face && q[k] == face && r[k] == face;
+        if (!on_wall) continue;
+        ++wall_triangles;
+        EXPECT_EQ(s.materials[s.material_ids[t]].metallic, 1.0f) << "wall triangle " << t << " is not a mirror";
+        EXPECT_GT(glm::dot(s.normals[3 * t], inside - p), 0.0f) << "wall triangle " << t << " faces out";
+    }
+    EXPECT_EQ(wall_triangles, 12u);   // six quads
+    const std::size_t object = s.triangle_count() - wall_triangles;
+    EXPECT_GE(object, 300u);
+    EXPECT_LE(object, 1000u);
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_TRUE(strictly_inside(s.lights[0].position, lo, hi));
+    EXPECT_TRUE(strictly_inside(s.camera.position, lo, hi));
+}
+
+TEST(BuiltinScenes, OfficeIsAFurnishedRoomOfTensOfThousandsOfTrianglesInManyMeshesAndOneLight) {
+    const SceneAsset a = make_builtin_scene("office");
+    const Scene s = flatten(a, {});
+    EXPECT_EQ(s.triangle_count(), 25424u);   // under 60,000: brute force (stage 02) stays within llvmpipe's loop limit
+    EXPECT_EQ(a.meshes.size(), 330u);
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_TRUE(strictly_inside(s.lights[0].position, s.bounds.lo, s.bounds.hi));
+    EXPECT_TRUE(strictly_inside(s.camera.position, s.bounds.lo, s.bounds.hi));
+    for (const Material& m : s.materials) {   // diffuse only: every secondary ray is a shadow ray
+        EXPECT_EQ(m.metallic, 0.0f) << m.name;
+        EXPECT_EQ(m.transmission, 0.0f) << m.name;
+    }
+    // The desks under the light are lit to between 0.2 and 1 (white Lambert).
+    const float desk = white_lambert(s, {0.0f, 0.76f, -1.6f}, {0, 1, 0});
+    EXPECT_GT(desk, 0.2f);
+    EXPECT_LT(desk, 1.0f);
+}
+
 TEST(BuiltinScenes, DiffuseHasOnlyDiffuseUntexturedMaterials) {
     const Scene s = flatten(make_builtin_scene("diffuse"), {});
     for (const Material& m : s.materials) {

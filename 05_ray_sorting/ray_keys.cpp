@@ -1,0 +1,139 @@
+#include "ray_keys.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace rt {
+
+namespace {
+
+std::uint32_t shift_left(std::uint32_t x, unsigned s) { return s >= 32 ? 0u : x << s; }
+
+// shaders/ray_sort.glsl: rs_interleave3.
+std::uint32_t interleave3(glm::uvec3 c, glm::uvec3 bits) {
+    std::uint32_t code = 0;
+    for (unsigned level = std::max({bits.x, bits.y, bits.z}); level-- > 0;)
+        for (int a = 0; a < 3; ++a)
+            if (level < bits[a]) code = (code << 1) | ((c[a] >> level) & 1u);
+    return code;
+}
+
+}  // namespace
+
+RayKeyLayout make_key_layout(glm::vec3 box_min, glm::vec3 box_max, unsigned key_bits, unsigned direction_bits,
+                             unsigned lights) {
+    if (key_bits < 1 || key_bits > 32)
+        throw std::invalid_argument("--key-bits " + std::to_string(key_bits) + " is not in 1..32");
+    if (direction_bits > key_bits)
+        throw std::invalid_argument("--direction-bits " + std::to_string(direction_bits) + " exceeds --key-bits " +
+                                    std::to_string(key_bits));
+    RayKeyLayout layout;
+    layout.box_min = box_min;
+    layout.key_bits = key_bits;
+    const unsigned origin = key_bits - direction_bits;
+    for (unsigned a = 0; a < 3; ++a) {
+        layout.origin_bits[a] = origin / 3 + (a < origin % 3 ? 1 : 0);
+        const double extent = double(box_max[a]) - double(box_min[a]);
+        layout.origin_scale[a] = extent > 0 ? float(std::ldexp(1.0, int(layout.origin_bits[a])) / extent) : 0.0f;
+    }
+    layout.direction_bits = {(direction_bits + 1) / 2, direction_bits / 2};
+    layout.group_count = 3 + lights;
+    const unsigned group_bits = unsigned(std::bit_width(layout.group_count - 1));
+    layout.hash_bits = std::min(key_bits, 32 - group_bits);
+    layout.hash_drop = key_bits - layout.hash_bits;
+    layout.sort_bits = group_bits + layout.hash_bits;
+    return layout;
+}
+
+std::uint32_t quantize_axis(float o, float box_min, float scale, unsigned bits) {
+    if (bits == 0) return 0;
+    const float f = (o - box_min) * scale;
+    const std::uint32_t cells = 1u << bits;
+    if (!(f >= 0.0f)) return 0;   // below the box, or NaN
+    if (f >= float(cells)) return cells - 1;
+    return std::uint32_t(f);
+}
+
+std::uint32_t octahedral_cell(float n, float s, unsigned bits) {
+    std::uint32_t c = 0;
+    for (int bit = int(bits) - 1; bit >= 0; --bit) {
+        const std::uint32_t t = c | (1u << bit);
+        const float threshold = std::ldexp(float(t), 1 - int(bits)) - 1.0f;   // exact: a dyadic number
+        const float limit = threshold * s;
+        if (n >= limit) c = t;
+    }
+    return c;
+}
+
+std::uint32_t ray_group(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) {
+    const std::uint32_t kind = ray.depth_kind >> 16;
+    const std::uint32_t group = kind == 1 ? 3 + ray.light : (kind == 0 ? 0 : kind - 1);
+    return std::min(group, layout.group_count - 1);
+}
+
+std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) {
+    glm::uvec3 oc;
+    for (int a = 0; a < 3; ++a)
+        oc[a] = quantize_axis(ray.origin[a], layout.box_min[a], layout.origin_scale[a], layout.origin_bits[a]);
+    const glm::vec3 d = ray.direction;
+    const float s = (std::abs(d.x) + std::abs(d.y)) + std::abs(d.z);
+    float nu = d.x, nv = d.y;
+    if (d.z < 0.0f) {   // the lower hemisphere folds over the diamond's edges
+        nu = (s - std::abs(d.y)) * (d.x >= 0.0f ? 1.0f : -1.0f);
+        nv = (s - std::abs(d.x)) * (d.y >= 0.0f ? 1.0f : -1.0f);
+    }
+    const glm::uvec3 dc{octahedral_cell(nu, s, layout.direction_bits.x), octahedral_cell(nv, s, layout.direction_bits.y),
+                        0u};
+    const unsigned direction_total = layout.direction_bits.x + layout.direction_bits.y;
+    const std::uint32_t origin_code = interleave3(oc, layout.origin_bits);
+    const std::uint32_t direction_code = interleave3(dc, {layout.direction_bits, 0u});
+    const std::uint32_t hash = layout.direction_major
+                                   ? shift_left(direction_code, layout.key_bits - direction_total) | origin_code
+                                   : shift_left(origin_code, direction_total) | direction_code;
+    const std::uint32_t kept = layout.hash_drop >= 32 ? 0u : hash >> layout.hash_drop;
+    return shift_left(ray_group(ray, layout), layout.hash_bits) | kept;
+}
+
+RayChunks compress(const std::vector<std::uint32_t>& keys) {
+    RayChunks chunks;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        if (i == 0 || keys[i] != keys[i - 1]) {
+            chunks.keys.push_back(keys[i]);
+            chunks.bases.push_back(std::uint32_t(i));
+            chunks.sizes.push_back(0);
+        }
+        ++chunks.sizes.back();
+    }
+    return chunks;
+}
+
+RayChunks sort_chunks(const RayChunks& chunks) {
+    std::vector<std::size_t> order(chunks.keys.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return chunks.keys[a] < chunks.keys[b]; });
+    RayChunks sorted;
+    for (std::size_t c : order) {
+        sorted.keys.push_back(chunks.keys[c]);
+        sorted.bases.push_back(chunks.bases[c]);
+        sorted.sizes.push_back(chunks.sizes[c]);
+    }
+    return sorted;
+}
+
+std::vector<std::uint32_t> decompress(const RayChunks& sorted, std::uint32_t first) {
+    std::vector<std::uint32_t> order;
+    for (std::size_t c = 0; c < sorted.keys.size(); ++c)
+        for (std::uint32_t k = 0; k < sorted.sizes[c]; ++k) order.push_back(first + sorted.bases[c] + k);
+    return order;
+}
+
+std::vector<std::uint32_t> sorted_order(const std::vector<std::uint32_t>& keys, std::uint32_t first) {
+    return decompress(sort_chunks(compress(keys)), first);
+}
+
+}  // namespace rt

@@ -1,0 +1,134 @@
+// The GPU ray sorting (ray_sort.h) against the CPU reference (ray_keys.h): keys bit for bit, and the sorted order
+// of compression + radix sort + decompression.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "common/gpu/gpu_test_context.h"
+#include "ray_sort.h"
+
+namespace rt {
+namespace {
+
+using gpu::Buffer;
+
+// Random rays of every group: origins partly outside the box, directions of every octant and the axes.
+std::vector<gpu::WavefrontRay> random_rays(std::size_t n, unsigned seed, unsigned lights) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-1.5f, 1.5f);
+    std::normal_distribution<float> normal;
+    std::vector<gpu::WavefrontRay> rays(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        gpu::WavefrontRay& r = rays[i];
+        r.origin = {pos(rng), pos(rng), pos(rng)};
+        r.direction = {normal(rng), normal(rng), normal(rng)};
+        if (i % 7 == 0) r.direction = {0, 0, 0};
+        if (i % 7 == 1) r.direction[int(i % 3)] = (i % 2 ? -0.0f : 0.0f);
+        const std::uint32_t kind = std::uint32_t(rng() % 4);
+        r.depth_kind = 1u | (kind << 16);
+        r.light = std::uint32_t(rng() % (lights + 1));   // one more than there are: clamped into the last group
+        r.pixel = std::uint32_t(i);
+    }
+    return rays;
+}
+
+std::vector<std::uint32_t> cpu_keys(const std::vector<gpu::WavefrontRay>& rays, const RayKeyLayout& layout,
+                                    std::size_t first, std::size_t count) {
+    std::vector<std::uint32_t> keys;
+    for (std::size_t i = first; i < first + count; ++i) keys.push_back(ray_key(rays[i], layout));
+    return keys;
+}
+
+TEST(RaySorter, KeysEqualTheCpuKeysBitForBit) {
+    gpu::test_context();
+    RaySorter sorter;
+    const std::vector<gpu::WavefrontRay> rays = random_rays(5000, 1, 3);
+    const Buffer buffer = Buffer::from(rays);
+    for (auto [key_bits, direction_bits] : {std::pair{30u, 12u}, {32u, 16u}, {20u, 0u}, {16u, 16u}, {7u, 5u}}) {
+        for (bool direction_major : {false, true}) {
+            sorter.layout = make_key_layout({-1, -0.5f, -1}, {1, 0.5f, 1.25f}, key_bits, direction_bits, 3);
+            sorter.layout.direction_major = direction_major;
+            sorter.compute_keys(buffer, 123, 4321);
+            EXPECT_EQ(sorter.keys().download<std::uint32_t>(4321), cpu_keys(rays, sorter.layout, 123, 4321))
+                << "key bits " << key_bits << ", direction bits " << direction_bits << ", direction major "
+                << direction_major;
+        }
+    }
+}
+
+std::vector<std::uint32_t> gpu_order(RaySorter& sorter, const std::vector<std::uint32_t>& keys, unsigned sort_bits,
+                                     std::uint32_t first) {
+    const Buffer buffer = Buffer::from(keys);
+    Buffer order;
+    sorter.sort_keys(buffer, keys.size(), sort_bits, first, order);
+    EXPECT_EQ(buffer.download<std::uint32_t>(keys.size()), keys) << "the keys were changed";
+    return order.download<std::uint32_t>(keys.size());
+}
+
+void expect_round_trip(const std::vector<std::uint32_t>& keys, const std::string& what) {
+    RaySorter sorter;
+    const std::uint32_t first = 17;
+    const std::vector<std::uint32_t> order = gpu_order(sorter, keys, 32, first);
+    EXPECT_EQ(order, sorted_order(keys, first)) << what << ", n = " << keys.size();
+    EXPECT_EQ(sorter.chunk_count(), compress(keys).keys.size()) << what << ", n = " << keys.size();
+    std::vector<std::uint32_t> seen = order;   // a permutation of first .. first + n - 1
+    std::sort(seen.begin(), seen.end());
+    for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], first + i) << what << ", n = " << keys.size();
+}
+
+// Lengths around the work group (256), one scan block (512) and a radix tile (4096), and several scan levels.
+const std::size_t kLengths[] = {1, 2, 255, 257, 511, 513, 4097, 100003};
+
+TEST(RaySorter, RandomKeysRoundTripLikeTheCpu) {
+    gpu::test_context();
+    std::mt19937 rng(11);
+    for (std::size_t n : kLengths) {
+        std::vector<std::uint32_t> keys(n);
+        for (auto& k : keys) k = rng() % 64 == 0 ? std::uint32_t(rng()) : std::uint32_t(rng() % 50);
+        for (std::size_t i = 0; i + 1 < n; i += 3) keys[i + 1] = keys[i];   // runs: chunks of several rays
+        expect_round_trip(keys, "random");
+    }
+}
+
+TEST(RaySorter, AllEqualKeysAreOneChunkInQueueOrder) {
+    gpu::test_context();
+    for (std::size_t n : kLengths) expect_round_trip(std::vector<std::uint32_t>(n, 0xabcdef12u), "all equal");
+}
+
+TEST(RaySorter, AllDistinctKeysAreOneChunkEach) {
+    gpu::test_context();
+    for (std::size_t n : kLengths) {
+        std::vector<std::uint32_t> keys(n);
+        for (std::size_t i = 0; i < n; ++i) keys[i] = std::uint32_t((n - i) * 2654435761u);   // distinct, unordered
+        expect_round_trip(keys, "all distinct");
+    }
+}
+
+TEST(RaySorter, RaysSortLikeTheCpuAndEachGroupKeepsItsQueueRange) {
+    gpu::test_context();
+    RaySorter sorter;
+    sorter.layout = make_key_layout({-1, -1, -1}, {1, 1, 1}, 30, 12, 4);
+    // A queue as the wavefront pipeline fills it: reflections, refractions, then shadow rays light by light; rays
+    // come in runs of three equal ones (the coherence compression exploits).
+    std::vector<gpu::WavefrontRay> rays = random_rays(20000, 5, 4);
+    std::stable_sort(rays.begin(), rays.end(), [&](const auto& a, const auto& b) {
+        return ray_group(a, sorter.layout) < ray_group(b, sorter.layout);
+    });
+    for (std::size_t i = 0; i < rays.size(); ++i)
+        if (i % 3 != 0) rays[i] = rays[i - 1];
+    const Buffer buffer = Buffer::from(rays);
+    Buffer order;
+    sorter.sort(buffer, 1000, 18000, order);
+    const std::vector<std::uint32_t> got = order.download<std::uint32_t>(18000);
+    const std::vector<std::uint32_t> keys = cpu_keys(rays, sorter.layout, 1000, 18000);
+    EXPECT_EQ(got, sorted_order(keys, 1000));
+    for (std::size_t i = 0; i < got.size(); ++i)
+        ASSERT_EQ(ray_group(rays[got[i]], sorter.layout), ray_group(rays[1000 + i], sorter.layout)) << "slot " << i;
+    EXPECT_EQ(sorter.chunk_count(), compress(keys).keys.size());
+    EXPECT_LE(sorter.chunk_count(), std::size_t(6001));
+}
+
+}  // namespace
+}  // namespace rt

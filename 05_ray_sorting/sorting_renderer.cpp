@@ -1,0 +1,136 @@
+#include "sorting_renderer.h"
+
+#include <CLI/CLI.hpp>
+
+#include "common/gpu/bindings.h"
+
+namespace rt {
+
+namespace {
+
+// Timer phases per batch kind (pass_time_ms in the stats).
+const char* const kSortPhase[2] = {"rs_sort.trace", "rs_sort.shadow"};
+const char* const kBatchKind[2] = {"trace", "shadow"};
+
+void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
+
+}  // namespace
+
+RaySortingRenderer::RaySortingRenderer() = default;
+RaySortingRenderer::~RaySortingRenderer() = default;
+
+void RaySortingRenderer::add_options(CLI::App& app) {
+    RayHierarchyRenderer::add_options(app);
+    app.add_option_function<std::string>(
+           "--sort", [this](const std::string& s) { sort_options.sort = s == "on"; },
+           "Sort each batch of rays before building the hierarchy: on (default) or off (exactly stage 04)")
+        ->check(CLI::IsMember({"on", "off"}));
+    app.add_option("--key-bits", sort_options.key_bits, "Bits of a ray's key for its origin and direction cells")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 32));
+    app.add_option("--direction-bits", sort_options.direction_bits, "Of the key bits, those of the direction cell")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 32));
+    app.parse_complete_callback([this] {
+        if (sort_options.direction_bits > sort_options.key_bits)
+            throw CLI::ValidationError("--direction-bits", std::to_string(sort_options.direction_bits) +
+                                                               " exceeds --key-bits " +
+                                                               std::to_string(sort_options.key_bits));
+    });
+}
+
+void RaySortingRenderer::compile() {
+    if (sorter_) return;
+    sorter_ = std::make_unique<RaySorter>();
+    gather_ = gpu::Program::compute("05_ray_sorting/ray_gather.comp");
+    scatter_ = gpu::Program::compute("05_ray_sorting/result_scatter.comp");
+}
+
+void RaySortingRenderer::build(const Scene& scene, const RenderSettings& settings) {
+    RayHierarchyRenderer::build(scene, settings);
+    batch_stats_ = {};
+    if (!sort_options.sort) return;
+    compile();
+    sorter_->layout = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits,
+                                      sort_options.direction_bits, unsigned(scene.lights.size()));
+}
+
+void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
+    if (!sort_options.sort || in.count == 0) {
+        RayHierarchyRenderer::trace_batch(in, shadow);
+        return;
+    }
+    const std::size_t n = in.count;
+    const unsigned stride = shadow ? 1u : unsigned(sizeof(gpu::WavefrontTraceResult) / 4);
+    BatchStats& stats = batch_stats_[shadow ? 1 : 0];
+    {
+        auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
+        sorter_->layout.direction_major = !shadow;   // ray_keys.h: which order suits which rays
+        sorter_->sort(in.rays, in.first, n, order_);
+        sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
+        gather_.set("rs_count", unsigned(n));
+        in.rays.bind_range(gpu::kBindingScanIn, 0, (in.first + n) * sizeof(gpu::WavefrontRay));
+        order_.bind_range(gpu::kBindingScanOut, 0, n * 4);
+        sorted_rays_.bind_range(gpu::kBindingScanSums, 0, n * sizeof(gpu::WavefrontRay));
+        gather_.dispatch_threads(n);
+        barrier();
+    }
+    stats.batches += 1;
+    stats.rays += n;
+    stats.chunks += sorter_->chunk_count();
+
+    sorted_results_.reserve(n * stride * 4);
+    RayHierarchyRenderer::trace_batch({sorted_rays_, 0, n, sorted_results_, in.tests_per_pixel, in.wavefront}, shadow);
+
+    auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
+    scatter_.set("rs_count", unsigned(n));
+    scatter_.set("rs_first", unsigned(in.first));
+    scatter_.set("rs_stride", stride);
+    order_.bind_range(gpu::kBindingScanIn, 0, n * 4);
+    sorted_results_.bind_range(gpu::kBindingScanOut, 0, n * stride * 4);
+    in.results.bind_range(gpu::kBindingScanSums, 0, n * stride * 4);
+    scatter_.dispatch_threads(n);
+    barrier();
+    gpu::check_gl("05_ray_sorting: sorted batch");
+}
+
+std::vector<std::string> RaySortingRenderer::stage_programs() const {
+    std::vector<std::string> programs = RayHierarchyRenderer::stage_programs();
+    if (sort_options.sort)
+        for (const char* p : {"ray_keys.comp", "chunk_heads.comp", "chunks.comp", "chunk_sizes.comp", "skeleton.comp",
+                              "ray_gather.comp", "result_scatter.comp"})
+            programs.push_back(std::string("05_ray_sorting/") + p);
+    return programs;
+}
+
+void RaySortingRenderer::add_stage_stats(FrameResult& result) {
+    RayHierarchyRenderer::add_stage_stats(result);
+    nlohmann::json rs = {{"sort", sort_options.sort}};
+    if (sort_options.sort) {
+        const RayKeyLayout& L = sorter_->layout;
+        rs["key"] = {{"key_bits", sort_options.key_bits},
+                     {"direction_bits", sort_options.direction_bits},
+                     {"origin_bits", {L.origin_bits.x, L.origin_bits.y, L.origin_bits.z}},
+                     {"octahedral_bits", {L.direction_bits.x, L.direction_bits.y}},
+                     {"groups", L.group_count},
+                     {"hash_bits_dropped", L.hash_drop},
+                     {"sort_bits", L.sort_bits},
+                     {"order", {{"shadow", "origin first"}, {"trace", "direction first"}}}};
+        const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
+        nlohmann::json batches = nlohmann::json::object();
+        for (int k = 0; k < 2; ++k) {
+            const BatchStats& s = batch_stats_[std::size_t(k)];
+            if (s.batches == 0) continue;
+            batches[kBatchKind[k]] = {
+                {"batches", s.batches},
+                {"rays", s.rays},
+                {"chunks", s.chunks},
+                {"rays_per_chunk", s.chunks ? double(s.rays) / double(s.chunks) : 0.0},
+                {"sort_ms", pass_ms.contains(kSortPhase[k]) ? double(pass_ms[kSortPhase[k]]) : 0.0}};
+        }
+        rs["batches"] = batches;
+    }
+    result.extra["ray_sorting"] = rs;
+}
+
+}  // namespace rt

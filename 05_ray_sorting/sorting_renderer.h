@@ -1,0 +1,48 @@
+// Stage 05: stage 04's ray-space hierarchy over sorted rays (Garanzha & Loop 2010; Reis's pipeline). For every batch
+// the wavefront pipeline hands over, the rays are sorted by key (ray_sort.h), copied into sorted order, traced
+// through the stage-04 hierarchy, and their results put back in queue order: the pipeline (and so the image, the
+// hits and the ray counts) cannot tell the difference; only the hierarchy's cost changes. --sort off is stage 04.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+
+#include "04_ray_hierarchy/ray_hierarchy_renderer.h"
+#include "ray_sort.h"
+
+namespace rt {
+
+struct SortOptions {
+    bool sort = true;             // --sort on|off
+    unsigned key_bits = 30;       // --key-bits: origin + direction bits of the key (ray_keys.h)
+    unsigned direction_bits = 12; // --direction-bits: of them, the direction's
+};
+
+class RaySortingRenderer : public RayHierarchyRenderer {
+public:
+    RaySortingRenderer();
+    ~RaySortingRenderer() override;
+
+    void add_options(CLI::App& app) override;   // stage 04's, --sort, --key-bits, --direction-bits
+    SortOptions sort_options;
+
+protected:
+    void build(const Scene& scene, const RenderSettings& settings) override;
+    void trace_batch(const gpu::BatchTraceInputs& in, bool shadow) override;
+    std::vector<std::string> stage_programs() const override;
+    void add_stage_stats(FrameResult& result) override;
+
+private:
+    struct BatchStats {   // per batch kind: 0 = trace (reflection, refraction), 1 = shadow
+        std::uint64_t batches = 0, rays = 0, chunks = 0;
+    };
+    void compile();
+
+    std::unique_ptr<RaySorter> sorter_;   // created with the first frame (needs the context)
+    gpu::Program gather_, scatter_;
+    gpu::Buffer order_, sorted_rays_, sorted_results_;
+    std::array<BatchStats, 2> batch_stats_{};
+};
+
+}  // namespace rt

@@ -1,0 +1,96 @@
+// Stage 05's renderer: sorting changes the cost of the hierarchy, never the frame.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+
+#include "common/gpu/gpu_test_context.h"
+#include "common/scene/builtin_scenes.h"
+#include "common/scene/effects.h"
+#include "sorting_renderer.h"
+
+namespace rt {
+namespace {
+
+std::uint32_t bits(float f) {
+    std::uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+Scene scene_at(const std::string& name) {
+    FlattenOptions options;
+    options.aspect = 4.0f / 3.0f;
+    return flatten(make_builtin_scene(name), options);
+}
+
+FrameResult render_05(const Scene& s, int width, int height, SortOptions sort) {
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.effects = analyze_effects(s);
+    settings.record_hits = true;
+    settings.record_tests_per_pixel = true;
+    RaySortingRenderer renderer;
+    renderer.sort_options = sort;
+    return renderer.render(s, settings);
+}
+
+// Image, ray counts and every hit (in the pipeline's order) equal bit for bit; the sorted frame really sorted.
+// `compresses`: neighbouring shadow rays share keys (not so where the pixels' footprints exceed the key's cells).
+// `shadow_batches`, when given, gets how many shadow batches were sorted.
+void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, int width, int height, bool compresses,
+                                     std::uint64_t* shadow_batches = nullptr) {
+    const Scene s = scene_at(name);
+    SortOptions off = on;
+    off.sort = false;
+    const FrameResult a = render_05(s, width, height, off), b = render_05(s, width, height, on);
+    ASSERT_EQ(a.image.pixels.size(), b.image.pixels.size()) << name;
+    for (std::size_t i = 0; i < a.image.pixels.size(); ++i) ASSERT_EQ(a.image.pixels[i], b.image.pixels[i]) << name;
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(a.stats.counters.rays[k], b.stats.counters.rays[k]) << name;
+    ASSERT_EQ(a.hits.size(), b.hits.size()) << name;
+    for (std::size_t i = 0; i < a.hits.size(); ++i) {
+        ASSERT_EQ(a.hits[i].pixel, b.hits[i].pixel) << name << " ray " << i;
+        ASSERT_EQ(a.hits[i].path, b.hits[i].path) << name << " ray " << i;
+        ASSERT_EQ(a.hits[i].kind_light, b.hits[i].kind_light) << name << " ray " << i;
+        ASSERT_EQ(a.hits[i].triangle, b.hits[i].triangle) << name << " ray " << i;
+        ASSERT_EQ(bits(a.hits[i].t), bits(b.hits[i].t)) << name << " ray " << i;
+    }
+    EXPECT_FALSE(bool(a.extra["ray_sorting"]["sort"])) << name;
+    EXPECT_TRUE(bool(b.extra["ray_sorting"]["sort"])) << name;
+    const auto& shadow = b.extra["ray_sorting"]["batches"]["shadow"];
+    EXPECT_EQ(std::uint64_t(shadow["rays"]), a.stats.counters.rays[1]) << name << ": every shadow ray was sorted";
+    if (compresses) {
+        EXPECT_LT(std::uint64_t(shadow["chunks"]), std::uint64_t(shadow["rays"])) << name;
+    }
+    EXPECT_LE(std::uint64_t(shadow["chunks"]), std::uint64_t(shadow["rays"])) << name;
+    // The same rays, a different hierarchy: the tests counted differ (that is the point of sorting).
+    EXPECT_NE(a.extra["ray_hierarchy"]["kinds"]["shadow"]["local_tests"],
+              b.extra["ray_hierarchy"]["kinds"]["shadow"]["local_tests"]) << name;
+    if (shadow_batches) *shadow_batches = std::uint64_t(shadow["batches"]);
+}
+
+TEST(RaySortingRenderer, SortOnAndOffGiveTheSameImageHitsAndRayCounts) {
+    gpu::test_context();
+    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true);       // shadow, reflection and refraction rays
+    expect_same_frame_sorted_or_not("mirror_box", {}, 48, 36, false);    // many bounces between mirrors
+    SortOptions coarse;
+    coarse.key_bits = 9;   // few, large cells: long chunks
+    coarse.direction_bits = 3;
+    expect_same_frame_sorted_or_not("whitted", coarse, 64, 48, true);
+}
+
+// $RT_MAX_SSBO_BYTES = 48 KiB: the pipeline hands over many small batches (each sorted on its own); still the
+// same frame.
+TEST(RaySortingRenderer, ManySmallBatchesUnderATinyStorageLimitGiveTheSameFrame) {
+    gpu::test_context();
+    std::uint64_t batches = 0, small_batches = 0;
+    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true, &batches);
+    ::setenv("RT_MAX_SSBO_BYTES", "49152", 1);
+    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true, &small_batches);
+    ::unsetenv("RT_MAX_SSBO_BYTES");
+    EXPECT_GT(small_batches, 2 * batches);
+}
+
+}  // namespace
+}  // namespace rt
