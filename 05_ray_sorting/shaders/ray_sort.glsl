@@ -76,6 +76,10 @@ uint rs_group(RsRay r) {
 }
 
 uint rs_ray_key(RsRay r) {
+    // BEGIN EXERCISE 05.ray_key: quantize the origin in the virtual grid (rs_quantize_axis per axis) and the direction
+    // by the octahedral map (d / (|dx| + |dy| + |dz|), the lower hemisphere folded; rs_octahedral_cell), interleave
+    // each (rs_interleave3), put the direction code above the origin code or below it (rs_direction_major), keep the
+    // top bits, and the ray's group (rs_group) above them all. Must equal ray_keys.cpp's key bit for bit.
     const uvec3 oc = uvec3(rs_quantize_axis(r.origin.x, rs_box_min.x, rs_origin_scale.x, rs_origin_bits.x),
                            rs_quantize_axis(r.origin.y, rs_box_min.y, rs_origin_scale.y, rs_origin_bits.y),
                            rs_quantize_axis(r.origin.z, rs_box_min.z, rs_origin_scale.z, rs_origin_bits.z));
@@ -95,4 +99,6 @@ uint rs_ray_key(RsRay r) {
                           : rs_shift_left(origin_code, rs_direction_total) | direction_code;
     const uint kept = rs_hash_drop >= 32u ? 0u : hash >> rs_hash_drop;
     return rs_shift_left(rs_group(r), rs_hash_bits) | kept;
+    // STUB: return rs_shift_left(rs_group(r), rs_hash_bits);
+    // END EXERCISE
 }

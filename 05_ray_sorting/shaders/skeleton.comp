@@ -18,6 +18,12 @@ uniform uint rs_first;   // added to every index: the queue position of key 0
 void main() {
     const uint j = rt_global_index();
     if (j >= rs_chunk_count) return;
+    // BEGIN EXERCISE 05.decompression: sorted chunk j starts at rs_starts[j] in the sorted order; write there its
+    // first ray's queue index (rs_first + the base of chunk rs_chunk_ids[j]) and a head flag, so that the segmented
+    // scan counts up from it over the chunk's rays.
     rs_skeleton[rs_starts[j]] = rs_first + rs_chunk_bases[rs_chunk_ids[j]];
     rs_heads[rs_starts[j]] = 1u;
+    // STUB: rs_skeleton[rs_starts[j]] = rs_first + rs_starts[j];
+    // STUB: rs_heads[rs_starts[j]] = 1u;
+    // END EXERCISE
 }
