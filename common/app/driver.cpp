@@ -221,7 +221,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
                         [&](const std::string& file) { write_hit_file(file, result.hits); });
         if (!options.heatmap.empty()) {
             const Heatmap heatmap = make_heatmap(result.tests_per_pixel, settings.width, settings.height,
-                                                 options.heatmap_scale);
+                                                 options.heatmap_scale, options.heatmap_max);
             files.write({"--heatmap", frame_path(options.heatmap, frame, options.frames)},
                         [&](const std::string& file) { write_image_file(file, heatmap.image); });
             result.extra["heatmap"] = heatmap_json(heatmap);

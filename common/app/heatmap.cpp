@@ -37,7 +37,8 @@ glm::vec3 heatmap_colour(float s) {
     return {srgb_to_linear(srgb.r), srgb_to_linear(srgb.g), srgb_to_linear(srgb.b)};
 }
 
-Heatmap make_heatmap(const std::vector<std::uint32_t>& tests, int width, int height, HeatmapScale scale) {
+Heatmap make_heatmap(const std::vector<std::uint32_t>& tests, int width, int height, HeatmapScale scale,
+                     std::uint32_t fixed_max) {
     if (tests.size() != std::size_t(width) * std::size_t(height))
         throw std::runtime_error("--heatmap: the stage counted tests for " + std::to_string(tests.size()) +
                                  " pixels, not " + std::to_string(width) + "x" + std::to_string(height));
@@ -45,13 +46,17 @@ Heatmap make_heatmap(const std::vector<std::uint32_t>& tests, int width, int hei
     h.scale = scale;
     h.min = tests.empty() ? 0 : *std::min_element(tests.begin(), tests.end());
     h.max = tests.empty() ? 0 : *std::max_element(tests.begin(), tests.end());
+    if (fixed_max > 0) {
+        h.min = 0;
+        h.max = fixed_max;
+    }
     h.total = std::accumulate(tests.begin(), tests.end(), std::uint64_t(0));
     h.colour_bar_rows = std::max(4, height / 10);
     h.image = Image(width, height + h.colour_bar_rows);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             h.image.at(x, y) = heatmap_colour(position(tests[std::size_t(y) * std::size_t(width) + std::size_t(x)],
-                                                       h.min, h.max, scale));
+                                                       h.min, h.max, scale));   // > max: clamped to the top
     // The colour bar: left edge = min, right edge = max; its top third carries the ticks (white on the dark half,
     // black on the bright half).
     const int tick_rows = (h.colour_bar_rows + 2) / 3;

@@ -27,7 +27,10 @@ struct Heatmap {
 };
 
 // tests_per_pixel has width * height entries (y * width + x).
-Heatmap make_heatmap(const std::vector<std::uint32_t>& tests_per_pixel, int width, int height, HeatmapScale scale);
+// fixed_max > 0 (--heatmap-max): the scale runs from 0 to fixed_max whatever the image holds (larger counts take the
+// top colour), so heatmaps of two stages or settings can be compared colour for colour.
+Heatmap make_heatmap(const std::vector<std::uint32_t>& tests_per_pixel, int width, int height, HeatmapScale scale,
+                     std::uint32_t fixed_max = 0);
 
 // {"min", "max", "total", "scale", "ticks", "colour_bar_rows"} for the stats JSON.
 nlohmann::json heatmap_json(const Heatmap& heatmap);

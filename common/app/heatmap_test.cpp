@@ -29,6 +29,18 @@ TEST(Heatmap, MinAndMaxTakeTheEndsOfTheColourScale) {
     EXPECT_EQ(j["ticks"], nlohmann::json({10.0, 22.5, 35.0, 47.5, 60.0}));
 }
 
+// --heatmap-max: a fixed scale [0, max], so two heatmaps compare colour for colour; larger counts take the top.
+TEST(Heatmap, AFixedMaxSpansZeroToItAndClampsLargerCounts) {
+    const std::vector<std::uint32_t> tests = {10, 20, 30, 40, 50, 60};
+    const Heatmap h = make_heatmap(tests, 3, 2, HeatmapScale::Linear, 40);
+    EXPECT_EQ(h.min, 0u);
+    EXPECT_EQ(h.max, 40u);
+    EXPECT_EQ(h.image.at(0, 0), heatmap_colour(0.25f));   // 10 of 0..40
+    EXPECT_EQ(h.image.at(0, 1), heatmap_colour(1.0f));    // 40
+    EXPECT_EQ(h.image.at(2, 1), heatmap_colour(1.0f));    // 60, clamped
+    EXPECT_EQ(heatmap_json(h)["ticks"], nlohmann::json({0.0, 10.0, 20.0, 30.0, 40.0}));
+}
+
 TEST(Heatmap, TheColourBarRunsFromMinToMaxWithTicks) {
     const Heatmap h = make_heatmap(std::vector<std::uint32_t>(101 * 40, 7), 101, 40, HeatmapScale::Linear);
     const int bottom = h.image.height - 1;   // below the ticks

@@ -63,6 +63,9 @@ void add_shared_options(CLI::App& app, Options& o) {
     app.add_option("--heatmap", o.heatmap, "Write a false-colour image of the ray/triangle tests per pixel to FILE");
     add_enum(app, "--heatmap-scale", o.heatmap_scale, {{"linear", HeatmapScale::Linear}, {"log", HeatmapScale::Log}},
              "Colour scale of --heatmap");
+    app.add_option("--heatmap-max", o.heatmap_max,
+                   "Top of --heatmap's scale (from 0; larger counts take the top colour), to compare two heatmaps")
+        ->check(number_in(1, 4e9));
     app.add_option("--frames", o.frames, "Number of frames for animated scenes (at most 10000)")->capture_default_str()
         ->check(number_in(1, kMaxFrames));
     app.add_option("--fps", o.fps, "Frames per second (frame i is rendered at t = i / fps)")->capture_default_str()

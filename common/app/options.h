@@ -24,6 +24,7 @@ struct Options {
     std::string dump_hits;                    // --dump-hits: every traced ray and its hit (hit_record.h)
     std::string heatmap;                      // --heatmap: false-colour ray/triangle tests per pixel (heatmap.h)
     HeatmapScale heatmap_scale = HeatmapScale::Linear;
+    std::uint32_t heatmap_max = 0;   // --heatmap-max (0: the image's own range)
     std::string effects = "auto";
     int camera = -1;
     int frames = 1;
