@@ -98,15 +98,6 @@ void test_main() { out_vec4(0u, rh_triangle_sphere(in_vec3(0u), in_vec3(3u), in_
     return s;
 }
 
-bool exact_hit(const RhRay& r, const glm::vec3* v) {
-    Ray<float> ray;
-    ray.origin = r.origin;
-    ray.direction = r.direction;
-    float t, u, w;
-    return intersect_watertight(ray, WatertightRay<float>(r.direction), v[0], v[1], v[2], t, u, w) ||
-           intersect_moller(ray, v[0], v[1], v[2], t, u, w);
-}
-
 TEST(GlslRayHierarchy, EveryRayInsideItsAncestorsAndNoHitRejected) {
     gpu::test_context();
     static gpu::GlslTestHarness may_hit("rh_may_hit", R"(#include "04_ray_hierarchy/rh_common.glsl"
@@ -148,7 +139,7 @@ void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec
                 std::size_t span = 1;
                 for (std::size_t k = 0; k < l; ++k) span *= std::size_t(b);
                 for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i)
-                    ASSERT_FALSE(exact_hit(c.rays[i], &c.triangles[3 * t]))
+                    ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], &c.triangles[3 * t]))
                         << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
             }
         }

@@ -15,15 +15,6 @@
 namespace rt {
 namespace {
 
-bool exact_hit(const RhRay& r, const glm::vec3* v) {
-    Ray<float> ray;
-    ray.origin = r.origin;
-    ray.direction = r.direction;
-    float t, u, w;
-    return intersect_watertight(ray, WatertightRay<float>(r.direction), v[0], v[1], v[2], t, u, w) ||
-           intersect_moller(ray, v[0], v[1], v[2], t, u, w);
-}
-
 bool valid(const RhRay& r) { return !rh_leaf(r.origin, r.direction).empty(); }
 
 // Rays [first, last) of the leaves under node j of level l.
@@ -65,7 +56,7 @@ TEST(RayHierarchy, TheNodeTestNeverRejectsATriangleARayBelowHits) {
                         const auto [first, last] = leaves_under(j, l, b, c.rays.size());
                         for (std::size_t i = first; i < last; ++i) {
                             ++checked;
-                            ASSERT_FALSE(exact_hit(c.rays[i], v))
+                            ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], v))
                                 << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
                         }
                     }

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "common/trace/intersect.h"
 #include "ray_hierarchy.h"
 
 namespace rt::ray_sets {
@@ -55,6 +56,16 @@ inline Case make(const std::string& name, int rays, float scale, glm::vec3 centr
         for (int k = 0; k < 3; ++k) c.triangles.push_back(p + 0.25f * scale * unit(g) * (0.2f + std::abs(u(g))));
     }
     return c;
+}
+
+// Whether the exact test hits triangle v[0..2] with the ray (either method: the property must hold for both).
+inline bool exact_hit(const RhRay& r, const glm::vec3* v) {
+    Ray<float> ray;
+    ray.origin = r.origin;
+    ray.direction = r.direction;
+    float t, u, w;
+    return intersect_watertight(ray, WatertightRay<float>(r.direction), v[0], v[1], v[2], t, u, w) ||
+           intersect_moller(ray, v[0], v[1], v[2], t, u, w);
 }
 
 inline std::vector<Case> all() {

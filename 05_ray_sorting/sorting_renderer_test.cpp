@@ -2,21 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <cstring>
 
 #include "common/gpu/gpu_test_context.h"
+#include "common/gpu/same_frame_expectations.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "sorting_renderer.h"
 
 namespace rt {
 namespace {
-
-std::uint32_t bits(float f) {
-    std::uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
 
 Scene scene_at(const std::string& name) {
     FlattenOptions options;
@@ -45,17 +39,8 @@ void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, in
     SortOptions off = on;
     off.sort = false;
     const FrameResult a = render_05(s, width, height, off), b = render_05(s, width, height, on);
-    ASSERT_EQ(a.image.pixels.size(), b.image.pixels.size()) << name;
-    for (std::size_t i = 0; i < a.image.pixels.size(); ++i) ASSERT_EQ(a.image.pixels[i], b.image.pixels[i]) << name;
-    for (int k = 0; k < 4; ++k) EXPECT_EQ(a.stats.counters.rays[k], b.stats.counters.rays[k]) << name;
-    ASSERT_EQ(a.hits.size(), b.hits.size()) << name;
-    for (std::size_t i = 0; i < a.hits.size(); ++i) {
-        ASSERT_EQ(a.hits[i].pixel, b.hits[i].pixel) << name << " ray " << i;
-        ASSERT_EQ(a.hits[i].path, b.hits[i].path) << name << " ray " << i;
-        ASSERT_EQ(a.hits[i].kind_light, b.hits[i].kind_light) << name << " ray " << i;
-        ASSERT_EQ(a.hits[i].triangle, b.hits[i].triangle) << name << " ray " << i;
-        ASSERT_EQ(bits(a.hits[i].t), bits(b.hits[i].t)) << name << " ray " << i;
-    }
+    expect_same_frame(a, b, name);
+    if (::testing::Test::HasFatalFailure()) return;
     EXPECT_FALSE(bool(a.extra["ray_sorting"]["sort"])) << name;
     EXPECT_TRUE(bool(b.extra["ray_sorting"]["sort"])) << name;
     const auto& shadow = b.extra["ray_sorting"]["batches"]["shadow"];
