@@ -474,6 +474,48 @@ void test_main() { out_vec4(0, sample_texture(in_i(0), in_vec2(1))); }
     expect_floats(expected, h.run(in.words, count, 3, 4, [&] { gpu.bind(); }), ulp_bound(), "sample_texture", 4);
 }
 
+// Metallic-roughness (linear) and emissive (sRGB) textures scaling a material's factors, as the CPU does.
+TEST(GlslTwins, SurfaceTexturesScaleTheFactors) {
+    test_context();
+    Rng rng;
+    Scene scene = test_scene(rng);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        Material& m = scene.materials[i];
+        m.roughness = rng.uniform(0, 1);
+        m.emissive = rng.vec(0, 3);
+        m.metallic_roughness_texture = int(i) + 1;          // 1..3
+        m.emissive_texture = int(i + 2) % 5;                // 2, 3, 4
+    }
+    scene.materials[0].metallic_roughness_texture = -1;     // one without: factors unchanged
+    GpuScene gpu;
+    gpu.upload(scene);
+    GlslTestHarness h("surface_textures_test", R"(
+#include "shading.glsl"
+void test_main() {
+    const Material m = rt_materials[in_u(0)];
+    const SurfaceTexels t = sample_surface_textures(m, in_vec2(1));
+    const SurfaceCoefficients s = surface_coefficients(m, t);
+    out_vec4(0, vec4(t.roughness, t.metallic, s.smoothness, s.dielectric));
+    out_vec4(4, vec4(s.emissive, 0.0));
+}
+)");
+    Words in;
+    std::vector<float> expected;
+    std::size_t count = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const std::uint32_t mi = std::uint32_t(i % 3);
+        const glm::vec2 uv(rng.uniform(-3, 3), rng.uniform(-3, 3));
+        in << mi << uv;
+        const Material& m = scene.materials[mi];
+        const SurfaceTexels t = sample_surface_textures(m, scene.textures, uv);
+        const SurfaceCoefficients s = surface_coefficients(m, t);
+        expected.insert(expected.end(), {t.roughness, t.metallic, s.smoothness, s.dielectric,
+                                         s.emissive.x, s.emissive.y, s.emissive.z, 0.0f});
+        ++count;
+    }
+    expect_floats(expected, h.run(in.words, count, 3, 8, [&] { gpu.bind(); }), ulp_bound(), "surface textures", 8);
+}
+
 TEST(GlslTwins, SurfacePointAndSceneLayout) {
     test_context();
     Rng rng;

@@ -41,6 +41,9 @@ GpuMaterial to_gpu(const Material& m) {
     g.transmission = m.transmission;
     g.ior = m.ior;
     g.specular = m.specular;
+    g.normal_texture = -1;
+    g.metallic_roughness_texture = m.metallic_roughness_texture;
+    g.emissive_texture = m.emissive_texture;
     return g;
 }
 

@@ -28,8 +28,11 @@ struct GpuMaterial {                     // scene.glsl: Material
     glm::vec3 emissive;       std::int32_t base_color_texture;
     glm::vec3 specular_color; float metallic;
     float roughness, transmission, ior, specular;
+    glm::vec3 attenuation;    float thickness;
+    std::int32_t normal_texture; float normal_scale; std::int32_t alpha_mode; float alpha_cutoff;
+    std::int32_t metallic_roughness_texture, emissive_texture, material_pad0, material_pad1;
 };
-static_assert(sizeof(GpuMaterial) == 64);
+static_assert(sizeof(GpuMaterial) == 112);
 
 struct GpuLight {                        // scene.glsl: Light
     glm::vec3 color;     std::int32_t type;

@@ -464,6 +464,51 @@ SceneAsset office() {
     return a;
 }
 
+// Textures that scale material factors texel by texel, as exported models use them (Avocado, LightsPunctualLamp):
+// a floor whose metallicRoughnessTexture alternates polished metal and rough plastic checks (factors metallic 1,
+// roughness 1: without the texture, a rough metal that mirrors nothing), and a wall panel whose emissiveTexture draws
+// coloured stripes. A diffuse ball stands on the floor so the metal checks have something to reflect.
+SceneAsset material_maps() {
+    SceneAsset a;
+    a.name = "material_maps";
+    a.background = glm::vec3(0.1f, 0.12f, 0.16f);
+
+    Texture checks;   // linear bytes: green = roughness, blue = metallic
+    checks.name = "metallic-roughness checks";
+    checks.width = checks.height = 2;
+    checks.nearest = true;
+    const std::uint8_t polished_metal[4] = {0, 0, 255, 255}, rough_plastic[4] = {0, 255, 0, 255};
+    for (int i = 0; i < 4; ++i) {
+        const std::uint8_t* c = (i == 0 || i == 3) ? polished_metal : rough_plastic;
+        checks.rgba8.insert(checks.rgba8.end(), c, c + 4);
+    }
+    a.textures.push_back(checks);
+    Texture stripes;   // sRGB colours, bilinear
+    stripes.name = "emissive stripes";
+    stripes.width = 4;
+    stripes.height = 1;
+    stripes.rgba8 = {255, 60, 20, 255, 255, 200, 40, 255, 30, 200, 255, 255, 0, 0, 0, 255};
+    a.textures.push_back(stripes);
+
+    Material floor = diffuse("checked floor", glm::vec3(0.8f));
+    floor.metallic = 1.0f;
+    floor.roughness = 1.0f;
+    floor.metallic_roughness_texture = 0;
+    Material panel = diffuse("glowing panel", glm::vec3(0.05f));
+    panel.emissive = glm::vec3(1.5f);
+    panel.emissive_texture = 1;
+    const int floor_m = add_material(a, floor);
+    const int panel_m = add_material(a, panel);
+    const int ball_m = add_material(a, diffuse("ball", glm::vec3(0.2f, 0.5f, 0.8f)));
+
+    add_mesh_node(a, "floor", make_quad({0, 0, -1}, {3, 0, 0}, {0, 0, -3}, 2.0f, floor_m));
+    add_mesh_node(a, "panel", make_quad({0, 1.2f, -3.5f}, {2.5f, 0, 0}, {0, 1.0f, 0}, 1.0f, panel_m));
+    add_mesh_node(a, "ball", make_uv_sphere({0.4f, 0.6f, -0.6f}, 0.6f, 24, 12, ball_m));
+    add_camera(a, {0.0f, 2.0f, 4.0f}, {0.0f, 0.6f, -1.0f}, 45.0f);
+    add_point_light(a, {2.0f, 4.0f, 2.0f}, 60.0f);
+    return a;
+}
+
 int parse_sphere_count(const std::string& text) {
     if (text.empty() || text.size() > 5) throw SceneError("bad sphere count '" + text + "' (expected 1 to 10000)");
     int n = 0;
@@ -478,7 +523,7 @@ int parse_sphere_count(const std::string& text) {
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-    return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office"};
+    return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office", "material_maps"};
 }
 
 SceneAsset make_builtin_scene(const std::string& name) {
@@ -489,6 +534,7 @@ SceneAsset make_builtin_scene(const std::string& name) {
     if (name == "far") return far();
     if (name == "mirror_box") return mirror_box();
     if (name == "office") return office();
+    if (name == "material_maps") return material_maps();
     if (name == "spheres") return spheres(64);
     if (name.rfind("spheres:", 0) == 0) return spheres(parse_sphere_count(name.substr(8)));
     std::string known;

@@ -15,16 +15,48 @@ std::vector<std::string> Effects::names() const {
     return out;
 }
 
+namespace {
+
+// The range of roughness and metallic a material takes over its metallic-roughness texture (green and blue bytes,
+// linear), or its factors when it has none.
+struct MetallicRoughnessRange {
+    float min_roughness, min_metallic, max_metallic;
+};
+
+MetallicRoughnessRange metallic_roughness_range(const Material& m, const std::vector<Texture>* textures) {
+    MetallicRoughnessRange r{m.roughness, m.metallic, m.metallic};
+    if (!textures || m.metallic_roughness_texture < 0 || std::size_t(m.metallic_roughness_texture) >= textures->size())
+        return r;
+    const Texture& t = (*textures)[std::size_t(m.metallic_roughness_texture)];
+    if (t.rgba8.empty()) return r;
+    std::uint8_t g_lo = 255, b_lo = 255, b_hi = 0;
+    for (std::size_t i = 0; i + 3 < t.rgba8.size(); i += 4) {
+        g_lo = std::min(g_lo, t.rgba8[i + 1]);
+        b_lo = std::min(b_lo, t.rgba8[i + 2]);
+        b_hi = std::max(b_hi, t.rgba8[i + 2]);
+    }
+    // Bilinear filtering stays between the extreme texels, so these bound every sample.
+    r.min_roughness = m.roughness * (float(g_lo) / 255.0f);
+    r.min_metallic = m.metallic * (float(b_lo) / 255.0f);
+    r.max_metallic = m.metallic * (float(b_hi) / 255.0f);
+    return r;
+}
+
+}  // namespace
+
 // docs/shading.md: a surface mirrors when it is not fully rough and has a specular lobe: metallic, or a dielectric
 // whose specular weight and colour are non-zero and whose index of refraction differs from 1 (F0 > 0).
-bool material_reflects(const Material& m) {
+bool material_reflects(const Material& m, const std::vector<Texture>* textures) {
+    const MetallicRoughnessRange r = metallic_roughness_range(m, textures);
     const float max_specular_color = std::max({m.specular_color.r, m.specular_color.g, m.specular_color.b});
     const bool dielectric_mirror = m.specular > 0.0f && max_specular_color > 0.0f && m.ior != 1.0f;
-    return m.roughness < 1.0f && (m.metallic > 0.0f || dielectric_mirror);
+    return r.min_roughness < 1.0f && (r.max_metallic > 0.0f || dielectric_mirror);
 }
 
 // Only the dielectric part of a material can transmit.
-bool material_transmits(const Material& m) { return m.transmission > 0.0f && m.metallic < 1.0f; }
+bool material_transmits(const Material& m, const std::vector<Texture>* textures) {
+    return m.transmission > 0.0f && metallic_roughness_range(m, textures).min_metallic < 1.0f;
+}
 
 // Only materials used by at least one triangle count. Shadows are called for whenever a light shines on geometry.
 // Proving that nothing can occlude is rarely possible: even a lone convex mesh shadows itself where its interpolated
@@ -39,10 +71,10 @@ Effects analyze_effects(const Scene& scene) {
     for (std::size_t i = 0; i < used.size(); ++i) {
         if (!used[i]) continue;
         const Material& m = scene.materials[i];
-        e.reflections = e.reflections || material_reflects(m);
-        e.refractions = e.refractions || material_transmits(m);
-        const bool textured = m.base_color_texture >= 0 && std::size_t(m.base_color_texture) < scene.textures.size();
-        e.textures = e.textures || textured;
+        e.reflections = e.reflections || material_reflects(m, &scene.textures);
+        e.refractions = e.refractions || material_transmits(m, &scene.textures);
+        for (int t : {m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture})
+            e.textures = e.textures || (t >= 0 && std::size_t(t) < scene.textures.size());
     }
     return e;
 }

@@ -27,8 +27,10 @@ Effects analyze_effects(const Scene& scene);
 Effects resolve_effects(const std::string& spec, const Scene& scene);
 bool is_valid_effects_spec(const std::string& spec);
 
-// Material predicates shared by the analysis and the shading code (docs/shading.md).
-bool material_reflects(const Material& m);
-bool material_transmits(const Material& m);
+// Material predicates shared by the analysis and the shading code (docs/shading.md). With the scene's textures,
+// a metallic-roughness texture counts at its extremes: the material reflects if its smoothest texel does and
+// transmits if its least metallic texel does (without them, the factors alone decide).
+bool material_reflects(const Material& m, const std::vector<Texture>* textures = nullptr);
+bool material_transmits(const Material& m, const std::vector<Texture>* textures = nullptr);
 
 }  // namespace rt

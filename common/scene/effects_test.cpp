@@ -104,6 +104,25 @@ TEST(MaterialPredicates, TransmitsOnlyWhenNotFullyMetallic) {
     EXPECT_FALSE(material_transmits(m));
 }
 
+// Avocado's case: factors metallic 1, roughness 1 (a rough metal, no mirror) that its metallic-roughness texture
+// turns into a smooth dielectric in places.
+TEST(MaterialPredicates, MetallicRoughnessTextureCountsAtItsExtremes) {
+    Material m;
+    m.transmission = 1;
+    m.metallic_roughness_texture = 0;
+    std::vector<Texture> textures{Texture{"mr", 2, 1, {0, 255, 255, 255, 0, 128, 0, 255}, false}};
+    EXPECT_FALSE(material_reflects(m));                 // the factors alone
+    EXPECT_TRUE(material_reflects(m, &textures));       // green 128: roughness 0.5 somewhere
+    EXPECT_FALSE(material_transmits(m));
+    EXPECT_TRUE(material_transmits(m, &textures));      // blue 0: a dielectric somewhere
+    textures[0].rgba8 = {0, 255, 255, 255, 0, 255, 255, 255};   // rough metal everywhere
+    EXPECT_FALSE(material_reflects(m, &textures));
+    EXPECT_FALSE(material_transmits(m, &textures));
+    Scene s = scene_with({m});
+    s.textures = textures;
+    EXPECT_TRUE(analyze_effects(s).textures);           // a metallic-roughness texture alone is a texture lookup
+}
+
 TEST(EffectsSpec, ResolvesAutoAllNoneAndLists) {
     const Scene s = flatten(make_builtin_scene("diffuse"), {});
     EXPECT_EQ(resolve_effects("auto", s), analyze_effects(s));

@@ -120,6 +120,9 @@ void expect_same_scene(const Scene& a, const Scene& b) {
         EXPECT_EQ(x.ior, y.ior);
         EXPECT_EQ(x.specular, y.specular);
         EXPECT_EQ(x.specular_color, y.specular_color);
+        EXPECT_EQ(x.base_color_texture, y.base_color_texture);
+        EXPECT_EQ(x.metallic_roughness_texture, y.metallic_roughness_texture);
+        EXPECT_EQ(x.emissive_texture, y.emissive_texture);
     }
     ASSERT_EQ(a.lights.size(), b.lights.size());
     for (std::size_t i = 0; i < a.lights.size(); ++i) {
@@ -230,7 +233,16 @@ TEST(GltfRoundTrip, KeepsExtensionMaterialsSpotDirectionalAndOrthographic) {
     m.ior = 1.33f;
     m.specular = 0.7f;
     m.specular_color = {0.9f, 0.8f, 0.7f};
+    m.metallic_roughness_texture = 0;
+    m.emissive_texture = 1;
     a.materials.push_back(m);
+    for (int i = 0; i < 2; ++i) {
+        Texture t;
+        t.width = 2;
+        t.height = 1;
+        t.rgba8 = {0, std::uint8_t(40 * i), 255, 255, 9, 99, 199, 255};
+        a.textures.push_back(t);
+    }
     Mesh mesh;
     Primitive p;
     p.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

@@ -299,6 +299,18 @@ struct Loader {
         return out;
     }
 
+    // A material's texture reference: its index, or -1 when it has none or uses a texture coordinate set other than
+    // TEXCOORD_0 (the only one flattened; warned about).
+    int texture_index(int index, int tex_coord, const std::string& what) {
+        if (index < 0) return -1;
+        check_index(index, model.textures.size(), what);
+        if (tex_coord != 0) {
+            warn(what + " uses TEXCOORD_" + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported, texture ignored");
+            return -1;
+        }
+        return index;
+    }
+
     Material material(const tinygltf::Material& m, std::size_t index) {
         Material out;
         out.name = m.name;
@@ -307,14 +319,13 @@ struct Loader {
         out.base_color = values<4>(pbr.baseColorFactor, name + ": baseColorFactor", glm::vec4(1.0f), 0.0f, 1.0f);
         out.metallic = value(pbr.metallicFactor, name + ": metallicFactor", 0.0f, 1.0f);
         out.roughness = value(pbr.roughnessFactor, name + ": roughnessFactor", 0.0f, 1.0f);
-        if (pbr.baseColorTexture.index >= 0) {
-            check_index(pbr.baseColorTexture.index, model.textures.size(), name + ": texture");
-            if (pbr.baseColorTexture.texCoord != 0)
-                warn(name + ": baseColorTexture uses TEXCOORD_" + std::to_string(pbr.baseColorTexture.texCoord) +
-                     "; only TEXCOORD_0 is supported, texture ignored");
-            else
-                out.base_color_texture = pbr.baseColorTexture.index;
-        }
+        out.base_color_texture = texture_index(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                               name + ": baseColorTexture");
+        out.metallic_roughness_texture = texture_index(pbr.metallicRoughnessTexture.index,
+                                                       pbr.metallicRoughnessTexture.texCoord,
+                                                       name + ": metallicRoughnessTexture");
+        out.emissive_texture = texture_index(m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                             name + ": emissiveTexture");
         const float strength = value(number(extension(m.extensions, "KHR_materials_emissive_strength"),
                                             "emissiveStrength", 1.0),
                                      name + ": emissiveStrength", 0.0f);

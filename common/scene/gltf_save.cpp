@@ -97,6 +97,9 @@ struct Writer {
         out.pbrMetallicRoughness.metallicFactor = m.metallic;
         out.pbrMetallicRoughness.roughnessFactor = m.roughness;
         if (m.base_color_texture >= 0) out.pbrMetallicRoughness.baseColorTexture.index = m.base_color_texture;
+        if (m.metallic_roughness_texture >= 0)
+            out.pbrMetallicRoughness.metallicRoughnessTexture.index = m.metallic_roughness_texture;
+        if (m.emissive_texture >= 0) out.emissiveTexture.index = m.emissive_texture;
         // emissiveFactor is limited to [0, 1]; larger values go through KHR_materials_emissive_strength.
         const float strength = std::max({m.emissive.r, m.emissive.g, m.emissive.b});
         if (strength > 1.0f) {

@@ -63,6 +63,9 @@ struct Material {
     float ior = 1.5f;                   // KHR_materials_ior
     float specular = 1.0f;              // KHR_materials_specular: specularFactor
     glm::vec3 specular_color{1.0f};     // KHR_materials_specular: specularColorFactor
+    // Textures that scale the factors above, texel by texel (indices into textures, or -1):
+    int metallic_roughness_texture = -1;   // linear: green scales roughness, blue scales metallic
+    int emissive_texture = -1;             // sRGB: scales emissive
 };
 
 enum class LightType : int { Point = 0, Spot = 1, Directional = 2 };

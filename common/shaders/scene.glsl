@@ -14,11 +14,14 @@
 #define RT_LIGHT_SPOT 1
 #define RT_LIGHT_DIRECTIONAL 2
 
-struct Material {                    // 64 bytes, std430 (GpuMaterial)
+struct Material {                    // 112 bytes, std430 (GpuMaterial)
     vec4 base_color;
-    vec3 emissive;       int base_color_texture;   // -1 = none
+    vec3 emissive;       int base_color_texture;   // textures: -1 = none
     vec3 specular_color; float metallic;
     float roughness; float transmission; float ior; float specular;
+    vec3 attenuation;    float thickness;
+    int normal_texture;  float normal_scale;  int alpha_mode;  float alpha_cutoff;
+    int metallic_roughness_texture; int emissive_texture; int material_pad0; int material_pad1;
 };
 
 struct Light {                       // 64 bytes, std430 (GpuLight)

@@ -68,26 +68,54 @@ float fresnel(int mode, float cos_i, float eta) {
 
 int rt_wrap(int x, int n) { return x >= 0 ? x % n : (n - 1) - ((-(x + 1)) % n); }   // ((x % n) + n) % n
 
-vec4 rt_texel(TextureInfo info, int x, int y) {
+// srgb: decode the colour channels from sRGB (colour textures), else bytes / 255 (data: metallicRoughnessTexture).
+vec4 rt_texel(TextureInfo info, int x, int y, bool srgb) {
     x = rt_wrap(x, info.width);
     y = rt_wrap(y, info.height);
     const uvec4 p = rt_texel_bytes(info, x, y);
+    if (!srgb) return vec4(rt_alpha_lut[p.r], rt_alpha_lut[p.g], rt_alpha_lut[p.b], rt_alpha_lut[p.a]);
     return vec4(rt_srgb_lut[p.r], rt_srgb_lut[p.g], rt_srgb_lut[p.b], rt_alpha_lut[p.a]);
 }
 
-vec4 sample_texture(int texture_index, vec2 uv) {
+vec4 rt_sample(int texture_index, vec2 uv, bool srgb) {
     const TextureInfo info = rt_texture_info(texture_index);
     if (info.width <= 0 || info.height <= 0 || !rt_isfinite(uv.x) || !rt_isfinite(uv.y)) return vec4(1.0);
     precise vec2 f = uv - floor(uv);
     precise float fx = f.x * float(info.width), fy = f.y * float(info.height);
-    if (info.nearest != 0) return rt_texel(info, int(fx), int(fy));
+    if (info.nearest != 0) return rt_texel(info, int(fx), int(fy), srgb);
     precise float sx = fx - 0.5, sy = fy - 0.5;
     const float x0f = floor(sx), y0f = floor(sy);
     precise float ax = sx - x0f, ay = sy - y0f;
     const int x0 = int(x0f), y0 = int(y0f);
-    const vec4 top = rt_mix(rt_texel(info, x0, y0), rt_texel(info, x0 + 1, y0), ax);
-    const vec4 bottom = rt_mix(rt_texel(info, x0, y0 + 1), rt_texel(info, x0 + 1, y0 + 1), ax);
+    const vec4 top = rt_mix(rt_texel(info, x0, y0, srgb), rt_texel(info, x0 + 1, y0, srgb), ax);
+    const vec4 bottom = rt_mix(rt_texel(info, x0, y0 + 1, srgb), rt_texel(info, x0 + 1, y0 + 1, srgb), ax);
     return rt_mix(top, bottom, ay);
+}
+
+vec4 sample_texture(int texture_index, vec2 uv) { return rt_sample(texture_index, uv, true); }
+vec4 sample_texture_linear(int texture_index, vec2 uv) { return rt_sample(texture_index, uv, false); }
+
+// What a material's textures say at one point (rt::SurfaceTexels / sample_surface_textures in shading.cpp): each
+// scales its factor; a texture the material does not have reads 1.
+struct SurfaceTexels {
+    vec4 base;
+    float roughness;
+    float metallic;
+    vec3 emissive;
+};
+
+SurfaceTexels surface_texels(vec4 base) { return SurfaceTexels(base, 1.0, 1.0, vec3(1.0)); }
+
+SurfaceTexels sample_surface_textures(Material m, vec2 uv) {
+    SurfaceTexels t = surface_texels(vec4(1.0));
+    if (m.base_color_texture >= 0) t.base = sample_texture(m.base_color_texture, uv);
+    if (m.metallic_roughness_texture >= 0) {
+        const vec4 mr = sample_texture_linear(m.metallic_roughness_texture, uv);
+        t.roughness = mr.g;
+        t.metallic = mr.b;
+    }
+    if (m.emissive_texture >= 0) t.emissive = sample_texture(m.emissive_texture, uv).rgb;
+    return t;
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -107,11 +135,13 @@ struct SurfaceCoefficients {
     float ior;
 };
 
-SurfaceCoefficients surface_coefficients(Material m, vec4 tex) {
+SurfaceCoefficients surface_coefficients(Material m, SurfaceTexels tex) {
     SurfaceCoefficients s;
-    const float metallic = rt_clamp(m.metallic, 0.0, 1.0);
-    const float roughness = rt_clamp(m.roughness, 0.0, 1.0);
-    precise vec3 base = m.base_color.rgb * tex.rgb;
+    precise float textured_metallic = m.metallic * tex.metallic;
+    precise float textured_roughness = m.roughness * tex.roughness;
+    const float metallic = rt_clamp(textured_metallic, 0.0, 1.0);
+    const float roughness = rt_clamp(textured_roughness, 0.0, 1.0);
+    precise vec3 base = m.base_color.rgb * tex.base.rgb;
     s.base = base;
     precise float dielectric = 1.0 - metallic;
     s.dielectric = dielectric;
@@ -131,8 +161,14 @@ SurfaceCoefficients surface_coefficients(Material m, vec4 tex) {
     s.shininess = shininess;
     precise vec3 specular = s.smoothness * (metallic * s.base + s.dielectric * s.f0_dielectric);
     s.specular = specular;
-    s.emissive = min(m.emissive, vec3(RT_MAX_RADIANCE));
+    precise vec3 emissive = m.emissive * tex.emissive;
+    s.emissive = min(emissive, vec3(RT_MAX_RADIANCE));
     return s;
+}
+
+// With the base colour texel only (surface_coefficients(Material, vec4) in shading.h).
+SurfaceCoefficients surface_coefficients(Material m, vec4 base_texel) {
+    return surface_coefficients(m, surface_texels(base_texel));
 }
 
 // Irradiance-like factor of one light at p with unit normal n (light_incidence in shading.cpp): the light's

@@ -1,7 +1,7 @@
 // Whitted's per-hit logic for the GPU stages: the body of Whitted::radiance (common/trace/whitted.h) cut into the
 // pieces the wavefront passes need (common/shaders/wavefront/shade.comp). docs/shading.md is the contract; the
 // arithmetic comes from the GLSL twins in shading.glsl, offset.glsl and scene.glsl, so a hit shades as on the CPU.
-// Compile-time switches (rt::gpu::effect_defines): ENABLE_TEXTURES samples base colour textures.
+// Compile-time switches (rt::gpu::effect_defines): ENABLE_TEXTURES samples the material's textures.
 #include "shading.glsl"
 #include "offset.glsl"
 #include "intersect.glsl"
@@ -16,11 +16,11 @@ WhittedSurface whitted_surface(Ray ray, Hit hit) {
     WhittedSurface w;
     w.point = surface_point(ray, uint(hit.triangle), hit.u, hit.v);
     const Material material = rt_materials[w.point.material];
-    vec4 texel = vec4(1.0);
+    SurfaceTexels texels = surface_texels(vec4(1.0));
 #ifdef ENABLE_TEXTURES
-    if (material.base_color_texture >= 0) texel = sample_texture(material.base_color_texture, w.point.uv);
+    texels = sample_surface_textures(material, w.point.uv);
 #endif
-    w.coefficients = surface_coefficients(material, texel);
+    w.coefficients = surface_coefficients(material, texels);
     return w;
 }
 

@@ -16,38 +16,57 @@ const std::array<float, 256>& srgb_table() {
     return table;
 }
 
+template <bool Srgb>
 glm::vec4 texel(const Texture& tex, int x, int y) {
     // REPEAT wrapping for any integer, negative included.
     x = ((x % tex.width) + tex.width) % tex.width;
     y = ((y % tex.height) + tex.height) % tex.height;
     const std::uint8_t* p = &tex.rgba8[(std::size_t(y) * std::size_t(tex.width) + std::size_t(x)) * 4];
+    if (!Srgb) return {float(p[0]) / 255.0f, float(p[1]) / 255.0f, float(p[2]) / 255.0f, float(p[3]) / 255.0f};
     const auto& lut = srgb_table();
     return {lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) / 255.0f};
 }
 
-}  // namespace
-
-glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv) {
+template <bool Srgb>
+glm::vec4 sample(const Texture& tex, glm::vec2 uv) {
     if (tex.width <= 0 || tex.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return glm::vec4(1.0f);
     // Keep only the fractional part first so huge UVs do not lose the texel position to float rounding.
     uv -= glm::floor(uv);
     const float fx = uv.x * float(tex.width), fy = uv.y * float(tex.height);
-    if (tex.nearest) return texel(tex, int(fx), int(fy));
+    if (tex.nearest) return texel<Srgb>(tex, int(fx), int(fy));
     // Bilinear between the four texel centres around (fx, fy).
     const float sx = fx - 0.5f, sy = fy - 0.5f;
     const float x0f = std::floor(sx), y0f = std::floor(sy);
     const float ax = sx - x0f, ay = sy - y0f;
     const int x0 = int(x0f), y0 = int(y0f);
-    const glm::vec4 top = glm::mix(texel(tex, x0, y0), texel(tex, x0 + 1, y0), ax);
-    const glm::vec4 bottom = glm::mix(texel(tex, x0, y0 + 1), texel(tex, x0 + 1, y0 + 1), ax);
+    const glm::vec4 top = glm::mix(texel<Srgb>(tex, x0, y0), texel<Srgb>(tex, x0 + 1, y0), ax);
+    const glm::vec4 bottom = glm::mix(texel<Srgb>(tex, x0, y0 + 1), texel<Srgb>(tex, x0 + 1, y0 + 1), ax);
     return glm::mix(top, bottom, ay);
 }
 
-SurfaceCoefficients surface_coefficients(const Material& m, const glm::vec4& tex) {
+}  // namespace
+
+glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv) { return sample<true>(tex, uv); }
+glm::vec4 sample_texture_linear(const Texture& tex, glm::vec2 uv) { return sample<false>(tex, uv); }
+
+SurfaceTexels sample_surface_textures(const Material& m, const std::vector<Texture>& textures, glm::vec2 uv) {
+    SurfaceTexels t;
+    const auto has = [&](int i) { return i >= 0 && std::size_t(i) < textures.size(); };
+    if (has(m.base_color_texture)) t.base = sample_texture(textures[std::size_t(m.base_color_texture)], uv);
+    if (has(m.metallic_roughness_texture)) {
+        const glm::vec4 mr = sample_texture_linear(textures[std::size_t(m.metallic_roughness_texture)], uv);
+        t.roughness = mr.g;
+        t.metallic = mr.b;
+    }
+    if (has(m.emissive_texture)) t.emissive = glm::vec3(sample_texture(textures[std::size_t(m.emissive_texture)], uv));
+    return t;
+}
+
+SurfaceCoefficients surface_coefficients(const Material& m, const SurfaceTexels& tex) {
     SurfaceCoefficients s;
-    const float metallic = std::clamp(m.metallic, 0.0f, 1.0f);
-    const float roughness = std::clamp(m.roughness, 0.0f, 1.0f);
-    s.base = glm::vec3(m.base_color) * glm::vec3(tex);
+    const float metallic = std::clamp(m.metallic * tex.metallic, 0.0f, 1.0f);
+    const float roughness = std::clamp(m.roughness * tex.roughness, 0.0f, 1.0f);
+    s.base = glm::vec3(m.base_color) * glm::vec3(tex.base);
     s.dielectric = 1.0f - metallic;
     s.transmission = std::clamp(m.transmission, 0.0f, 1.0f);
     s.smoothness = (1.0f - roughness) * (1.0f - roughness);
@@ -62,7 +81,7 @@ SurfaceCoefficients surface_coefficients(const Material& m, const glm::vec4& tex
     const float alpha = std::max(roughness * roughness, 0.1f);   // floor keeps mirror highlights a few pixels wide
     s.shininess = 2.0f / (alpha * alpha) - 2.0f;
     s.specular = s.smoothness * (metallic * s.base + s.dielectric * s.f0_dielectric);
-    s.emissive = glm::min(m.emissive, glm::vec3(kMaxRadiance));
+    s.emissive = glm::min(m.emissive * tex.emissive, glm::vec3(kMaxRadiance));
     return s;
 }
 

@@ -81,6 +81,20 @@ inline float linear_to_srgb(float c) {
 // Texture lookup with REPEAT wrapping; nearest or bilinear per the texture. Returns linear RGBA (sRGB decoded).
 glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv);
 
+// The same lookup for textures that hold data, not colour (metallicRoughnessTexture): bytes / 255, no sRGB decode.
+glm::vec4 sample_texture_linear(const Texture& tex, glm::vec2 uv);
+
+// What a material's textures say at one point, each scaling its factor (docs/shading.md): the base colour (RGBA),
+// roughness (metallicRoughnessTexture's green), metallic (its blue) and emission (emissiveTexture). A texture the
+// material does not have reads 1, which leaves the factor exactly as it is.
+struct SurfaceTexels {
+    glm::vec4 base{1.0f};
+    float roughness = 1.0f;
+    float metallic = 1.0f;
+    glm::vec3 emissive{1.0f};
+};
+SurfaceTexels sample_surface_textures(const Material& m, const std::vector<Texture>& textures, glm::vec2 uv);
+
 // Whitted coefficients of a surface point (docs/shading.md, "From glTF materials to Whitted coefficients").
 struct SurfaceCoefficients {
     glm::vec3 diffuse{0};      // kd: Lambertian albedo
@@ -96,7 +110,13 @@ struct SurfaceCoefficients {
     float ior = 1.5f;
 };
 
-SurfaceCoefficients surface_coefficients(const Material& m, const glm::vec4& texel);
+SurfaceCoefficients surface_coefficients(const Material& m, const SurfaceTexels& texels);
+// With the base colour texel only (materials without metallic-roughness or emissive textures).
+inline SurfaceCoefficients surface_coefficients(const Material& m, const glm::vec4& base_texel) {
+    SurfaceTexels t;
+    t.base = base_texel;
+    return surface_coefficients(m, t);
+}
 
 // Irradiance-like factor of one light at point p with unit normal n: returns the light's radiance scale times the
 // cosine term and gives the unit direction to the light and the distance (infinite for directional lights).

@@ -169,6 +169,41 @@ TEST(Textures, BilinearBlendsNeighbours) {
     EXPECT_NEAR(sample_texture(t, {0.5f, 0.5f}).x, 0.5f, 1e-6f);   // halfway between the two texel centres
 }
 
+TEST(Textures, MetallicRoughnessIsLinearAndEmissiveIsSrgb) {
+    Texture mr;   // green 51 (roughness 0.2), blue 255 (metallic 1), read as linear bytes / 255
+    mr.width = mr.height = 1;
+    mr.rgba8 = {0, 51, 255, 255};
+    Texture glow;   // sRGB 188 is about linear 0.5
+    glow.width = glow.height = 1;
+    glow.rgba8 = {188, 0, 255, 255};
+    Material m;
+    m.metallic = 0.5f;
+    m.roughness = 1.0f;
+    m.emissive = glm::vec3(2.0f);
+    m.metallic_roughness_texture = 0;
+    m.emissive_texture = 1;
+    const SurfaceTexels t = sample_surface_textures(m, {mr, glow}, {0.5f, 0.5f});
+    EXPECT_EQ(t.roughness, 51.0f / 255.0f);
+    EXPECT_EQ(t.metallic, 1.0f);
+    EXPECT_EQ(t.emissive, glm::vec3(srgb_to_linear(188.0f / 255.0f), 0.0f, 1.0f));
+    const SurfaceCoefficients s = surface_coefficients(m, t);
+    EXPECT_FLOAT_EQ(s.smoothness, 0.64f);   // (1 - 0.2)^2: the texture made a rough factor smooth
+    EXPECT_EQ(s.dielectric, 0.5f);
+    EXPECT_EQ(s.emissive, 2.0f * t.emissive);
+}
+
+TEST(Textures, MaterialWithoutExtraTexturesKeepsItsFactorsExactly) {
+    Material m;
+    m.metallic = 0.3f;
+    m.roughness = 0.7f;
+    m.emissive = {0.1f, 0.2f, 0.3f};
+    const SurfaceCoefficients a = surface_coefficients(m, sample_surface_textures(m, {}, {0.5f, 0.5f}));
+    const SurfaceCoefficients b = surface_coefficients(m, glm::vec4(1.0f));
+    EXPECT_EQ(a.smoothness, b.smoothness);
+    EXPECT_EQ(a.dielectric, 1.0f - 0.3f);
+    EXPECT_EQ(a.emissive, m.emissive);
+}
+
 TEST(Srgb, RoundTripsEveryByte) {
     for (int i = 0; i < 256; ++i)
         EXPECT_EQ(std::lround(linear_to_srgb(srgb_to_linear(i / 255.0f)) * 255.0f), i);

@@ -116,10 +116,9 @@ public:
         if (!found) return scene_.background;
         const SurfacePoint<T> sp = surface_point(scene_, ray, hit);
         const Material& material = scene_.materials[sp.material];
-        glm::vec4 tex(1.0f);
-        if (settings_.effects.textures && material.base_color_texture >= 0)
-            tex = sample_texture(scene_.textures[std::size_t(material.base_color_texture)], sp.uv);
-        const SurfaceCoefficients s = surface_coefficients(material, tex);
+        SurfaceTexels texels;
+        if (settings_.effects.textures) texels = sample_surface_textures(material, scene_.textures, sp.uv);
+        const SurfaceCoefficients s = surface_coefficients(material, texels);
         const glm::vec3 d = glm::vec3(ray.direction);
         const glm::vec3 n = sp.shading_normal;
 
