@@ -220,7 +220,7 @@ TEST(Bindings, SceneStructsHaveTheCppLayout) {
                                          {"metallic_roughness_texture",
                                           offsetof(GpuMaterial, metallic_roughness_texture)},
                                          {"emissive_texture", offsetof(GpuMaterial, emissive_texture)},
-                                         {"material_pad0", offsetof(GpuMaterial, material_pad0)},
+                                         {"transmission_texture", offsetof(GpuMaterial, transmission_texture)},
                                          {"material_pad1", offsetof(GpuMaterial, material_pad1)}}));
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "SceneLights",
                   array_of<GpuLight>("rt_lights", 0,

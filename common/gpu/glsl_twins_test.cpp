@@ -485,6 +485,8 @@ TEST(GlslTwins, SurfaceTexturesScaleTheFactors) {
         m.emissive = rng.vec(0, 3);
         m.metallic_roughness_texture = int(i) + 1;          // 1..3
         m.emissive_texture = int(i + 2) % 5;                // 2, 3, 4
+        m.transmission = rng.uniform(0, 1);
+        m.transmission_texture = int(i + 3) % 5;            // 3, 4, 0
     }
     scene.materials[0].metallic_roughness_texture = -1;     // one without: factors unchanged
     GpuScene gpu;
@@ -496,7 +498,7 @@ void test_main() {
     const SurfaceTexels t = sample_surface_textures(m, in_vec2(1));
     const SurfaceCoefficients s = surface_coefficients(m, t);
     out_vec4(0, vec4(t.roughness, t.metallic, s.smoothness, s.dielectric));
-    out_vec4(4, vec4(s.emissive, 0.0));
+    out_vec4(4, vec4(s.emissive, s.transmission));
 }
 )");
     Words in;
@@ -510,7 +512,7 @@ void test_main() {
         const SurfaceTexels t = sample_surface_textures(m, scene.textures, uv);
         const SurfaceCoefficients s = surface_coefficients(m, t);
         expected.insert(expected.end(), {t.roughness, t.metallic, s.smoothness, s.dielectric,
-                                         s.emissive.x, s.emissive.y, s.emissive.z, 0.0f});
+                                         s.emissive.x, s.emissive.y, s.emissive.z, s.transmission});
         ++count;
     }
     expect_floats(expected, h.run(in.words, count, 3, 8, [&] { gpu.bind(); }), ulp_bound(), "surface textures", 8);

@@ -44,6 +44,7 @@ GpuMaterial to_gpu(const Material& m) {
     g.normal_texture = -1;
     g.metallic_roughness_texture = m.metallic_roughness_texture;
     g.emissive_texture = m.emissive_texture;
+    g.transmission_texture = m.transmission_texture;
     return g;
 }
 

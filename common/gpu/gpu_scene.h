@@ -30,7 +30,7 @@ struct GpuMaterial {                     // scene.glsl: Material
     float roughness, transmission, ior, specular;
     glm::vec3 attenuation;    float thickness;
     std::int32_t normal_texture; float normal_scale; std::int32_t alpha_mode; float alpha_cutoff;
-    std::int32_t metallic_roughness_texture, emissive_texture, material_pad0, material_pad1;
+    std::int32_t metallic_roughness_texture, emissive_texture, transmission_texture, material_pad1;
 };
 static_assert(sizeof(GpuMaterial) == 112);
 

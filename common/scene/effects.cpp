@@ -73,7 +73,7 @@ Effects analyze_effects(const Scene& scene) {
         const Material& m = scene.materials[i];
         e.reflections = e.reflections || material_reflects(m, &scene.textures);
         e.refractions = e.refractions || material_transmits(m, &scene.textures);
-        for (int t : {m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture})
+        for (int t : {m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture, m.transmission_texture})
             e.textures = e.textures || (t >= 0 && std::size_t(t) < scene.textures.size());
     }
     return e;

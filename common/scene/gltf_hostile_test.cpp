@@ -298,4 +298,21 @@ TEST_F(GltfHostile, NegativeAndOutOfRangeValuesAreClampedWithAWarning) {
 }
 
 }  // namespace
+
+// Texture references inside material extensions are JSON numbers tinygltf does not check: a fraction, a huge or a
+// negative index, or a texture that does not exist, is refused before anything reads it.
+TEST_F(GltfHostile, ExtensionTextureIndexThatIsNotATextureIsRefused) {
+    for (const auto& [index, expected] : std::vector<std::pair<json, std::string>>{
+             {json(0.5), "transmissionTexture index is 0.5"},
+             {json(1e300), "transmissionTexture index is"},
+             {json(-7), "transmissionTexture index is -7"},
+             {json(3), "transmissionTexture 3 does not exist"}}) {
+        json doc = triangle();
+        doc["materials"] = json::parse(R"([{"extensions":{"KHR_materials_transmission":{"transmissionFactor":1}}}])");
+        doc["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionTexture"] = {{"index", index}};
+        doc["meshes"][0]["primitives"][0]["material"] = 0;
+        expect_refused(doc, expected);
+    }
+}
+
 }  // namespace rt

@@ -123,6 +123,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
         EXPECT_EQ(x.base_color_texture, y.base_color_texture);
         EXPECT_EQ(x.metallic_roughness_texture, y.metallic_roughness_texture);
         EXPECT_EQ(x.emissive_texture, y.emissive_texture);
+        EXPECT_EQ(x.transmission_texture, y.transmission_texture);
     }
     ASSERT_EQ(a.lights.size(), b.lights.size());
     for (std::size_t i = 0; i < a.lights.size(); ++i) {
@@ -235,6 +236,7 @@ TEST(GltfRoundTrip, KeepsExtensionMaterialsSpotDirectionalAndOrthographic) {
     m.specular_color = {0.9f, 0.8f, 0.7f};
     m.metallic_roughness_texture = 0;
     m.emissive_texture = 1;
+    m.transmission_texture = 1;
     a.materials.push_back(m);
     for (int i = 0; i < 2; ++i) {
         Texture t;

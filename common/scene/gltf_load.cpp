@@ -311,6 +311,20 @@ struct Loader {
         return index;
     }
 
+    // A texture reference inside an extension object ({"index": i, "texCoord": n}), as texture_index.
+    int extension_texture(const tinygltf::Value* object, const std::string& key, const std::string& material) {
+        const tinygltf::Value* info = object ? member(*object, key) : nullptr;
+        if (!info || !info->IsObject()) return -1;
+        const std::string what = material + ": " + key;
+        const auto integer = [&](const char* field, double fallback) {
+            const double v = number(info, field, fallback);
+            if (v != std::floor(v) || v < -1.0 || v > 2147483647.0)
+                invalid(what + " " + field + " is " + describe(v) + ", not a valid index");
+            return int(v);
+        };
+        return texture_index(integer("index", -1.0), integer("texCoord", 0.0), what);
+    }
+
     Material material(const tinygltf::Material& m, std::size_t index) {
         Material out;
         out.name = m.name;
@@ -331,9 +345,9 @@ struct Loader {
                                      name + ": emissiveStrength", 0.0f);
         // factor <= 1, so the product fits a float too
         out.emissive = values<3>(m.emissiveFactor, name + ": emissiveFactor", glm::vec3(0.0f), 0.0f, 1.0f) * strength;
-        out.transmission =
-            value(number(extension(m.extensions, "KHR_materials_transmission"), "transmissionFactor", 0.0),
-                  name + ": transmissionFactor", 0.0f, 1.0f);
+        const tinygltf::Value* transmission = extension(m.extensions, "KHR_materials_transmission");
+        out.transmission = value(number(transmission, "transmissionFactor", 0.0), name + ": transmissionFactor", 0.0f, 1.0f);
+        out.transmission_texture = extension_texture(transmission, "transmissionTexture", name);
         out.ior = value(number(extension(m.extensions, "KHR_materials_ior"), "ior", 1.5), name + ": ior", 1.0f);
         const tinygltf::Value* specular = extension(m.extensions, "KHR_materials_specular");
         out.specular = value(number(specular, "specularFactor", 1.0), name + ": specularFactor", 0.0f, 1.0f);

@@ -112,8 +112,10 @@ struct Writer {
             out.emissiveFactor = {m.emissive.r, m.emissive.g, m.emissive.b};
         }
         if (m.transmission != 0.0f) {
-            out.extensions["KHR_materials_transmission"] =
-                object({{"transmissionFactor", tinygltf::Value(double(m.transmission))}});
+            tinygltf::Value::Object transmission{{"transmissionFactor", tinygltf::Value(double(m.transmission))}};
+            if (m.transmission_texture >= 0)
+                transmission["transmissionTexture"] = object({{"index", tinygltf::Value(m.transmission_texture)}});
+            out.extensions["KHR_materials_transmission"] = tinygltf::Value(transmission);
             use_extension("KHR_materials_transmission");
         }
         if (m.ior != 1.5f) {

@@ -184,7 +184,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     scene.materials = asset.materials;
     scene.textures = asset.textures;
     for (Material& m : scene.materials)
-        for (int* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.emissive_texture})
+        for (int* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.emissive_texture, &m.transmission_texture})
             if (*t >= int(scene.textures.size())) *t = -1;
     std::size_t dropped = 0;
     int default_material = -1;   // index of the appended glTF default material, once needed

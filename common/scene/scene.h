@@ -66,6 +66,7 @@ struct Material {
     // Textures that scale the factors above, texel by texel (indices into textures, or -1):
     int metallic_roughness_texture = -1;   // linear: green scales roughness, blue scales metallic
     int emissive_texture = -1;             // sRGB: scales emissive
+    int transmission_texture = -1;         // linear: red scales transmission (KHR_materials_transmission)
 };
 
 enum class LightType : int { Point = 0, Spot = 1, Directional = 2 };

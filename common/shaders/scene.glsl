@@ -21,7 +21,7 @@ struct Material {                    // 112 bytes, std430 (GpuMaterial)
     float roughness; float transmission; float ior; float specular;
     vec3 attenuation;    float thickness;
     int normal_texture;  float normal_scale;  int alpha_mode;  float alpha_cutoff;
-    int metallic_roughness_texture; int emissive_texture; int material_pad0; int material_pad1;
+    int metallic_roughness_texture; int emissive_texture; int transmission_texture; int material_pad1;
 };
 
 struct Light {                       // 64 bytes, std430 (GpuLight)

@@ -102,9 +102,10 @@ struct SurfaceTexels {
     float roughness;
     float metallic;
     vec3 emissive;
+    float transmission;
 };
 
-SurfaceTexels surface_texels(vec4 base) { return SurfaceTexels(base, 1.0, 1.0, vec3(1.0)); }
+SurfaceTexels surface_texels(vec4 base) { return SurfaceTexels(base, 1.0, 1.0, vec3(1.0), 1.0); }
 
 SurfaceTexels sample_surface_textures(Material m, vec2 uv) {
     SurfaceTexels t = surface_texels(vec4(1.0));
@@ -115,6 +116,7 @@ SurfaceTexels sample_surface_textures(Material m, vec2 uv) {
         t.metallic = mr.b;
     }
     if (m.emissive_texture >= 0) t.emissive = sample_texture(m.emissive_texture, uv).rgb;
+    if (m.transmission_texture >= 0) t.transmission = sample_texture_linear(m.transmission_texture, uv).r;
     return t;
 }
 
@@ -145,7 +147,8 @@ SurfaceCoefficients surface_coefficients(Material m, SurfaceTexels tex) {
     s.base = base;
     precise float dielectric = 1.0 - metallic;
     s.dielectric = dielectric;
-    s.transmission = rt_clamp(m.transmission, 0.0, 1.0);
+    precise float textured_transmission = m.transmission * tex.transmission;
+    s.transmission = rt_clamp(textured_transmission, 0.0, 1.0);
     precise float smoothness = (1.0 - roughness) * (1.0 - roughness);
     s.smoothness = smoothness;
     s.ior = m.ior > 0.0 ? m.ior : 1.5;

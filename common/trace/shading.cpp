@@ -59,6 +59,8 @@ SurfaceTexels sample_surface_textures(const Material& m, const std::vector<Textu
         t.metallic = mr.b;
     }
     if (has(m.emissive_texture)) t.emissive = glm::vec3(sample_texture(textures[std::size_t(m.emissive_texture)], uv));
+    if (has(m.transmission_texture))
+        t.transmission = sample_texture_linear(textures[std::size_t(m.transmission_texture)], uv).r;
     return t;
 }
 
@@ -68,7 +70,7 @@ SurfaceCoefficients surface_coefficients(const Material& m, const SurfaceTexels&
     const float roughness = std::clamp(m.roughness * tex.roughness, 0.0f, 1.0f);
     s.base = glm::vec3(m.base_color) * glm::vec3(tex.base);
     s.dielectric = 1.0f - metallic;
-    s.transmission = std::clamp(m.transmission, 0.0f, 1.0f);
+    s.transmission = std::clamp(m.transmission * tex.transmission, 0.0f, 1.0f);
     s.smoothness = (1.0f - roughness) * (1.0f - roughness);
     s.ior = m.ior > 0.0f ? m.ior : 1.5f;
     // Dielectric reflectance at normal incidence, scaled by KHR_materials_specular.

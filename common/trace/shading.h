@@ -85,13 +85,15 @@ glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv);
 glm::vec4 sample_texture_linear(const Texture& tex, glm::vec2 uv);
 
 // What a material's textures say at one point, each scaling its factor (docs/shading.md): the base colour (RGBA),
-// roughness (metallicRoughnessTexture's green), metallic (its blue) and emission (emissiveTexture). A texture the
+// roughness (metallicRoughnessTexture's green), metallic (its blue), emission (emissiveTexture) and transmission
+// (transmissionTexture's red). A texture the
 // material does not have reads 1, which leaves the factor exactly as it is.
 struct SurfaceTexels {
     glm::vec4 base{1.0f};
     float roughness = 1.0f;
     float metallic = 1.0f;
     glm::vec3 emissive{1.0f};
+    float transmission = 1.0f;   // transmissionTexture's red
 };
 SurfaceTexels sample_surface_textures(const Material& m, const std::vector<Texture>& textures, glm::vec2 uv);
 
