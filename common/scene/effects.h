@@ -15,6 +15,8 @@ struct Effects {
     bool reflections = false;
     bool refractions = false;
     bool textures = false;
+    bool absorption = false;    // KHR_materials_volume: Beer-Lambert inside transmitting volumes
+    bool normal_maps = false;   // normal textures perturb the shading normal
     bool operator==(const Effects&) const = default;
     std::vector<std::string> names() const;   // e.g. {"shadows", "reflections"}
 };
@@ -30,5 +32,9 @@ bool is_valid_effects_spec(const std::string& spec);
 // Material predicates shared by the analysis and the shading code (docs/shading.md).
 bool material_reflects(const Material& m);
 bool material_transmits(const Material& m);
+// A transmitting material with a volume (thickness > 0) and a finite attenuation distance (docs/shading.md,
+// "Absorption"); and one with a normal texture (valid index into `texture_count` textures).
+bool material_absorbs(const Material& m);
+bool material_has_normal_map(const Material& m, std::size_t texture_count);
 
 }  // namespace rt

@@ -68,27 +68,31 @@ float fresnel(int mode, float cos_i, float eta) {
 
 int rt_wrap(int x, int n) { return x >= 0 ? x % n : (n - 1) - ((-(x + 1)) % n); }   // ((x % n) + n) % n
 
-vec4 rt_texel(TextureInfo info, int x, int y) {
+// srgb false (normal maps): every channel linear, byte / 255, like alpha.
+vec4 rt_texel(TextureInfo info, int x, int y, bool srgb) {
     x = rt_wrap(x, info.width);
     y = rt_wrap(y, info.height);
     const uvec4 p = rt_texel_bytes(info, x, y);
+    if (!srgb) return vec4(rt_alpha_lut[p.r], rt_alpha_lut[p.g], rt_alpha_lut[p.b], rt_alpha_lut[p.a]);
     return vec4(rt_srgb_lut[p.r], rt_srgb_lut[p.g], rt_srgb_lut[p.b], rt_alpha_lut[p.a]);
 }
 
-vec4 sample_texture(int texture_index, vec2 uv) {
+vec4 sample_texture_decoded(int texture_index, vec2 uv, bool srgb) {
     const TextureInfo info = rt_texture_info(texture_index);
     if (info.width <= 0 || info.height <= 0 || !rt_isfinite(uv.x) || !rt_isfinite(uv.y)) return vec4(1.0);
     precise vec2 f = uv - floor(uv);
     precise float fx = f.x * float(info.width), fy = f.y * float(info.height);
-    if (info.nearest != 0) return rt_texel(info, int(fx), int(fy));
+    if (info.nearest != 0) return rt_texel(info, int(fx), int(fy), srgb);
     precise float sx = fx - 0.5, sy = fy - 0.5;
     const float x0f = floor(sx), y0f = floor(sy);
     precise float ax = sx - x0f, ay = sy - y0f;
     const int x0 = int(x0f), y0 = int(y0f);
-    const vec4 top = rt_mix(rt_texel(info, x0, y0), rt_texel(info, x0 + 1, y0), ax);
-    const vec4 bottom = rt_mix(rt_texel(info, x0, y0 + 1), rt_texel(info, x0 + 1, y0 + 1), ax);
+    const vec4 top = rt_mix(rt_texel(info, x0, y0, srgb), rt_texel(info, x0 + 1, y0, srgb), ax);
+    const vec4 bottom = rt_mix(rt_texel(info, x0, y0 + 1, srgb), rt_texel(info, x0 + 1, y0 + 1, srgb), ax);
     return rt_mix(top, bottom, ay);
 }
+
+vec4 sample_texture(int texture_index, vec2 uv) { return sample_texture_decoded(texture_index, uv, true); }
 
 // ---------------------------------------------------------------------------------------------------------------
 // Whitted coefficients of a surface point (docs/shading.md).
