@@ -210,7 +210,17 @@ TEST(Bindings, SceneStructsHaveTheCppLayout) {
                                          {"roughness", offsetof(GpuMaterial, roughness)},
                                          {"transmission", offsetof(GpuMaterial, transmission)},
                                          {"ior", offsetof(GpuMaterial, ior)},
-                                         {"specular", offsetof(GpuMaterial, specular)}}));
+                                         {"specular", offsetof(GpuMaterial, specular)},
+                                         {"attenuation", offsetof(GpuMaterial, attenuation)},
+                                         {"thickness", offsetof(GpuMaterial, thickness)},
+                                         {"normal_texture", offsetof(GpuMaterial, normal_texture)},
+                                         {"normal_scale", offsetof(GpuMaterial, normal_scale)},
+                                         {"alpha_mode", offsetof(GpuMaterial, alpha_mode)},
+                                         {"alpha_cutoff", offsetof(GpuMaterial, alpha_cutoff)},
+                                         {"base_color_uv_matrix", offsetof(GpuMaterial, base_color_uv_matrix)},
+                                         {"normal_uv_matrix", offsetof(GpuMaterial, normal_uv_matrix)},
+                                         {"base_color_uv_offset", offsetof(GpuMaterial, base_color_uv_offset)},
+                                         {"normal_uv_offset", offsetof(GpuMaterial, normal_uv_offset)}}));
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "SceneLights",
                   array_of<GpuLight>("rt_lights", 0,
                                      {{"color", offsetof(GpuLight, color)},
