@@ -24,7 +24,8 @@ struct Effects {
 // What the scene needs (--effects auto).
 Effects analyze_effects(const Scene& scene);
 
-// Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures.
+// Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures,
+// absorption,normal_maps.
 // For "auto" returns analyze_effects(scene). Throws std::invalid_argument on an unknown word.
 Effects resolve_effects(const std::string& spec, const Scene& scene);
 bool is_valid_effects_spec(const std::string& spec);
