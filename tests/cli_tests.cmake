@@ -38,6 +38,10 @@ function(rt_add_cli_tests stage)
   add_test(NAME cli.${stage}.export_gltf_renders_like_builtin
            COMMAND ${CMAKE_COMMAND} -DMODE=export -DEXE=${exe} -DOUT_DIR=${out}
                    -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
+  add_test(NAME cli.${stage}.export_surface_effects_renders_like_builtin
+           COMMAND ${CMAKE_COMMAND} -DMODE=export_surface -DEXE=${exe} -DOUT_DIR=${out}/export_surface
+                   -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
+  set_tests_properties(cli.${stage}.export_surface_effects_renders_like_builtin PROPERTIES LABELS "cli;cli-${stage}")
   add_test(NAME cli.${stage}.frames_write_numbered_images
            COMMAND ${CMAKE_COMMAND} -DMODE=frames -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
   # Hostile input, by class (issue 7). Each case: class.name|regex its one-line error must match|argument|...;

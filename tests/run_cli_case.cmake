@@ -134,6 +134,23 @@ elseif(MODE STREQUAL "export")
     message(FATAL_ERROR "the exported glTF renders differently from the built-in scene")
   endif()
 
+elseif(MODE STREQUAL "export_surface")
+  # Issue 13's surface effects survive export: volume, normal texture, TANGENT and KHR_texture_transform.
+  foreach(scene absorption normal_map)
+    file(REMOVE ${OUT_DIR}/${scene}.gltf)
+    render(rc err --scene builtin:${scene} --export ${OUT_DIR}/${scene}.gltf --quiet)
+    render(rc1 err1 --scene builtin:${scene} --width 80 --height 60 --quiet --out ${OUT_DIR}/${scene}_builtin.exr)
+    render(rc2 err2 --scene ${OUT_DIR}/${scene}.gltf --width 80 --height 60 --quiet --out ${OUT_DIR}/${scene}_gltf.exr)
+    if(NOT rc EQUAL 0 OR NOT rc1 EQUAL 0 OR NOT rc2 EQUAL 0)
+      message(FATAL_ERROR "${scene}: export or render failed: ${err} ${err1} ${err2}")
+    endif()
+    execute_process(COMMAND ${COMPARE} ${OUT_DIR}/${scene}_gltf.exr ${OUT_DIR}/${scene}_builtin.exr --threshold 0
+                            --fail-fraction 0 --name ${scene}_export --diff-dir ${OUT_DIR} RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "the exported ${scene} glTF renders differently from the built-in scene")
+    endif()
+  endforeach()
+
 elseif(MODE STREQUAL "frames")
   file(GLOB old ${OUT_DIR}/anim_*.png)
   if(old)

@@ -221,7 +221,12 @@ TEST(Bindings, SceneStructsHaveTheCppLayout) {
                                           offsetof(GpuMaterial, metallic_roughness_texture)},
                                          {"emissive_texture", offsetof(GpuMaterial, emissive_texture)},
                                          {"transmission_texture", offsetof(GpuMaterial, transmission_texture)},
-                                         {"material_pad1", offsetof(GpuMaterial, material_pad1)}}));
+                                         {"material_pad1", offsetof(GpuMaterial, material_pad1)},
+
+                                         {"base_color_uv_matrix", offsetof(GpuMaterial, base_color_uv_matrix)},
+                                         {"normal_uv_matrix", offsetof(GpuMaterial, normal_uv_matrix)},
+                                         {"base_color_uv_offset", offsetof(GpuMaterial, base_color_uv_offset)},
+                                         {"normal_uv_offset", offsetof(GpuMaterial, normal_uv_offset)}}));
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "SceneLights",
                   array_of<GpuLight>("rt_lights", 0,
                                      {{"color", offsetof(GpuLight, color)},

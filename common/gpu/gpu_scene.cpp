@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "../scene/gltf_io.h"
+#include "../trace/absorption.h"
 #include "../trace/shading.h"
+#include "../trace/texture_transform.h"
 #include "bindings.h"
 #include "storage_limit.h"
 
@@ -41,7 +43,16 @@ GpuMaterial to_gpu(const Material& m) {
     g.transmission = m.transmission;
     g.ior = m.ior;
     g.specular = m.specular;
-    g.normal_texture = -1;
+    g.attenuation = absorption_coefficient(m);
+    g.thickness = m.thickness;
+    g.normal_texture = m.normal_texture;
+    g.normal_scale = m.normal_scale;
+    g.alpha_mode = 0;
+    g.alpha_cutoff = 0.0f;
+    g.base_color_uv_matrix = uv_matrix(m.base_color_transform);
+    g.normal_uv_matrix = uv_matrix(m.normal_transform);
+    g.base_color_uv_offset = m.base_color_transform.offset;
+    g.normal_uv_offset = m.normal_transform.offset;
     g.metallic_roughness_texture = m.metallic_roughness_texture;
     g.emissive_texture = m.emissive_texture;
     g.transmission_texture = m.transmission_texture;
@@ -78,7 +89,11 @@ void GpuScene::upload(const Scene& scene) {
     if (scene.normals.size() != vertices || scene.uvs.size() != vertices || vertices != scene.triangle_count() * 3)
         throw std::invalid_argument("GpuScene::upload: positions/normals/uvs/material_ids sizes disagree");
     positions_.assign(convert<glm::vec4>(scene.positions, [](const glm::vec3& p) { return glm::vec4(p, 1.0f); }));
-    normals_.assign(convert<glm::vec4>(scene.normals, [](const glm::vec3& n) { return glm::vec4(n, 0.0f); }));
+    // With normal maps (docs/shading.md), the tangents follow the normals in the same buffer: vertex i's tangent is
+    // entry 3 * triangles + i (no extra binding, and no bytes at all for scenes without normal maps).
+    std::vector<glm::vec4> normals = convert<glm::vec4>(scene.normals, [](const glm::vec3& n) { return glm::vec4(n, 0.0f); });
+    if (scene.tangents.size() == vertices) normals.insert(normals.end(), scene.tangents.begin(), scene.tangents.end());
+    normals_.assign(normals);
     uvs_.assign(scene.uvs);
     material_ids_.assign(scene.material_ids);
     materials_.assign(convert<GpuMaterial>(scene.materials, [](const Material& m) { return to_gpu(m); }));

@@ -28,11 +28,15 @@ struct GpuMaterial {                     // scene.glsl: Material
     glm::vec3 emissive;       std::int32_t base_color_texture;
     glm::vec3 specular_color; float metallic;
     float roughness, transmission, ior, specular;
-    glm::vec3 attenuation;    float thickness;
+    glm::vec3 attenuation;    float thickness;          // attenuation = sigma_a (rt::absorption_coefficient)
     std::int32_t normal_texture; float normal_scale; std::int32_t alpha_mode; float alpha_cutoff;
     std::int32_t metallic_roughness_texture, emissive_texture, transmission_texture, material_pad1;
+    // KHR_texture_transform: rt::uv_matrix (a, b, c, d) and the offsets of the base colour and normal textures.
+    glm::vec4 base_color_uv_matrix;
+    glm::vec4 normal_uv_matrix;
+    glm::vec2 base_color_uv_offset; glm::vec2 normal_uv_offset;
 };
-static_assert(sizeof(GpuMaterial) == 112);
+static_assert(sizeof(GpuMaterial) == 160);
 
 struct GpuLight {                        // scene.glsl: Light
     glm::vec3 color;     std::int32_t type;

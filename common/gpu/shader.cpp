@@ -25,6 +25,8 @@ ShaderDefines effect_defines(const Effects& effects) {
     if (effects.reflections) d["ENABLE_REFLECTIONS"] = "1";
     if (effects.refractions) d["ENABLE_REFRACTIONS"] = "1";
     if (effects.textures) d["ENABLE_TEXTURES"] = "1";
+    if (effects.absorption) d["ENABLE_ABSORPTION"] = "1";
+    if (effects.normal_maps) d["ENABLE_NORMAL_MAPS"] = "1";
     return d;
 }
 

@@ -8,6 +8,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "builtin_surface_scenes.h"
 #include "gltf_io.h"
 
 namespace rt {
@@ -523,7 +524,8 @@ int parse_sphere_count(const std::string& text) {
 }  // namespace
 
 std::vector<std::string> builtin_scene_names() {
-    return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office", "material_maps"};
+    return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office", "material_maps",
+            "absorption", "normal_map"};
 }
 
 SceneAsset make_builtin_scene(const std::string& name) {
@@ -535,6 +537,8 @@ SceneAsset make_builtin_scene(const std::string& name) {
     if (name == "mirror_box") return mirror_box();
     if (name == "office") return office();
     if (name == "material_maps") return material_maps();
+    if (name == "absorption") return absorption_scene();
+    if (name == "normal_map") return normal_map_scene();
     if (name == "spheres") return spheres(64);
     if (name.rfind("spheres:", 0) == 0) return spheres(parse_sphere_count(name.substr(8)));
     std::string known;

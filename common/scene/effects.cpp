@@ -2,9 +2,14 @@
 #include "effects.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace rt {
+
+namespace {
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+}  // namespace
 
 std::vector<std::string> Effects::names() const {
     std::vector<std::string> out;
@@ -12,6 +17,8 @@ std::vector<std::string> Effects::names() const {
     if (reflections) out.push_back("reflections");
     if (refractions) out.push_back("refractions");
     if (textures) out.push_back("textures");
+    if (absorption) out.push_back("absorption");
+    if (normal_maps) out.push_back("normal_maps");
     return out;
 }
 
@@ -58,6 +65,15 @@ bool material_transmits(const Material& m, const std::vector<Texture>* textures)
     return m.transmission > 0.0f && metallic_roughness_range(m, textures).min_metallic < 1.0f;
 }
 
+bool material_absorbs(const Material& m, const std::vector<Texture>* textures) {
+    return material_transmits(m, textures) && m.thickness > 0.0f && m.attenuation_distance < kInfinity &&
+           m.attenuation_color != glm::vec3(1.0f);
+}
+
+bool material_has_normal_map(const Material& m, std::size_t texture_count) {
+    return m.normal_texture >= 0 && std::size_t(m.normal_texture) < texture_count;
+}
+
 // Only materials used by at least one triangle count. Shadows are called for whenever a light shines on geometry.
 // Proving that nothing can occlude is rarely possible: even a lone convex mesh shadows itself where its interpolated
 // normals face a light that its flat triangles face away from (near the terminator of a tessellated sphere), so the
@@ -75,6 +91,8 @@ Effects analyze_effects(const Scene& scene) {
         e.refractions = e.refractions || material_transmits(m, &scene.textures);
         for (int t : {m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture, m.transmission_texture})
             e.textures = e.textures || (t >= 0 && std::size_t(t) < scene.textures.size());
+        e.absorption = e.absorption || material_absorbs(m, &scene.textures);
+        e.normal_maps = e.normal_maps || (material_has_normal_map(m, scene.textures.size()) && !scene.tangents.empty());
     }
     return e;
 }
@@ -93,6 +111,8 @@ bool parse_list(const std::string& spec, Effects& out, std::string* bad_word) {
         else if (word == "reflections") out.reflections = true;
         else if (word == "refractions") out.refractions = true;
         else if (word == "textures") out.textures = true;
+        else if (word == "absorption") out.absorption = true;
+        else if (word == "normal_maps") out.normal_maps = true;
         else {
             if (bad_word) *bad_word = word;
             return false;
@@ -112,14 +132,14 @@ bool is_valid_effects_spec(const std::string& spec) {
 
 Effects resolve_effects(const std::string& spec, const Scene& scene) {
     if (spec == "auto") return analyze_effects(scene);
-    if (spec == "all") return Effects{true, true, true, true};
+    if (spec == "all") return Effects{true, true, true, true, true, true};
     if (spec == "none") return Effects{};
     Effects e;
     std::string bad;
     if (!parse_list(spec, e, &bad))
         throw std::invalid_argument("unknown effect '" + bad +
                                     "' in --effects (use auto, all, none or a comma list of shadows, reflections, "
-                                    "refractions, textures)");
+                                    "refractions, textures, absorption, normal_maps)");
     return e;
 }
 

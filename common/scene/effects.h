@@ -15,6 +15,8 @@ struct Effects {
     bool reflections = false;
     bool refractions = false;
     bool textures = false;
+    bool absorption = false;    // KHR_materials_volume: Beer-Lambert inside transmitting volumes
+    bool normal_maps = false;   // normal textures perturb the shading normal
     bool operator==(const Effects&) const = default;
     std::vector<std::string> names() const;   // e.g. {"shadows", "reflections"}
 };
@@ -22,7 +24,8 @@ struct Effects {
 // What the scene needs (--effects auto).
 Effects analyze_effects(const Scene& scene);
 
-// Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures.
+// Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures,
+// absorption,normal_maps.
 // For "auto" returns analyze_effects(scene). Throws std::invalid_argument on an unknown word.
 Effects resolve_effects(const std::string& spec, const Scene& scene);
 bool is_valid_effects_spec(const std::string& spec);
@@ -32,5 +35,9 @@ bool is_valid_effects_spec(const std::string& spec);
 // transmits if its least metallic texel does (without them, the factors alone decide).
 bool material_reflects(const Material& m, const std::vector<Texture>* textures = nullptr);
 bool material_transmits(const Material& m, const std::vector<Texture>* textures = nullptr);
+// A transmitting material with a volume (thickness > 0) and a finite attenuation distance (docs/shading.md,
+// "Absorption"); and one with a normal texture (valid index into `texture_count` textures).
+bool material_absorbs(const Material& m, const std::vector<Texture>* textures = nullptr);
+bool material_has_normal_map(const Material& m, std::size_t texture_count);
 
 }  // namespace rt

@@ -124,7 +124,15 @@ void expect_same_scene(const Scene& a, const Scene& b) {
         EXPECT_EQ(x.metallic_roughness_texture, y.metallic_roughness_texture);
         EXPECT_EQ(x.emissive_texture, y.emissive_texture);
         EXPECT_EQ(x.transmission_texture, y.transmission_texture);
+        EXPECT_EQ(x.attenuation_color, y.attenuation_color);
+        EXPECT_EQ(x.attenuation_distance, y.attenuation_distance);
+        EXPECT_EQ(x.thickness, y.thickness);
+        EXPECT_EQ(x.normal_texture, y.normal_texture);
+        EXPECT_EQ(x.normal_scale, y.normal_scale);
+        EXPECT_EQ(x.base_color_transform, y.base_color_transform);
+        EXPECT_EQ(x.normal_transform, y.normal_transform);
     }
+    EXPECT_EQ(a.tangents, b.tangents);
     ASSERT_EQ(a.lights.size(), b.lights.size());
     for (std::size_t i = 0; i < a.lights.size(); ++i) {
         EXPECT_EQ(a.lights[i].type, b.lights[i].type);

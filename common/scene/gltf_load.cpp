@@ -267,6 +267,10 @@ struct Loader {
                 out.uvs.push_back(glm::vec2(v));
             if (out.uvs.size() != nv) invalid(name + ": TEXCOORD_0 and POSITION counts differ");
         }
+        if (const int tangent = attribute("TANGENT"); tangent >= 0) {
+            out.tangents = read_vectors(model, budget(tangent, name), 4, false, name + " TANGENT");
+            if (out.tangents.size() != nv) invalid(name + ": TANGENT and POSITION counts differ");
+        }
         if (p.indices >= 0) {
             out.indices = read_indices(model, budget(p.indices, name), name + " indices");
             for (std::uint32_t i : out.indices)
@@ -333,13 +337,38 @@ struct Loader {
         out.base_color = values<4>(pbr.baseColorFactor, name + ": baseColorFactor", glm::vec4(1.0f), 0.0f, 1.0f);
         out.metallic = value(pbr.metallicFactor, name + ": metallicFactor", 0.0f, 1.0f);
         out.roughness = value(pbr.roughnessFactor, name + ": roughnessFactor", 0.0f, 1.0f);
-        out.base_color_texture = texture_index(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                               name + ": baseColorTexture");
+        if (pbr.baseColorTexture.index >= 0) {
+            check_index(pbr.baseColorTexture.index, model.textures.size(), name + ": texture");
+            if (texture_transform(pbr.baseColorTexture.extensions, pbr.baseColorTexture.texCoord,
+                                  name + ": baseColorTexture", out.base_color_transform))
+                out.base_color_texture = pbr.baseColorTexture.index;
+        }
+        if (m.normalTexture.index >= 0) {
+            check_index(m.normalTexture.index, model.textures.size(), name + ": normalTexture");
+            if (texture_transform(m.normalTexture.extensions, m.normalTexture.texCoord, name + ": normalTexture",
+                                  out.normal_transform))
+                out.normal_texture = m.normalTexture.index;
+            out.normal_scale = value(m.normalTexture.scale, name + ": normalTexture scale");
+        }
+        // KHR_materials_volume: attenuationColor [0, 1], attenuationDistance > 0 (absent: infinite, no absorption),
+        // thicknessFactor >= 0 (0: thin-walled). JSON cannot spell infinity, so a given distance is finite.
+        if (const tinygltf::Value* volume = extension(m.extensions, "KHR_materials_volume")) {
+            out.thickness = value(number(volume, "thicknessFactor", 0.0), name + ": thicknessFactor", 0.0f);
+            out.attenuation_color = values<3>(numbers(volume, "attenuationColor", {}), name + ": attenuationColor",
+                                              glm::vec3(1.0f), 0.0f, 1.0f);
+            if (const tinygltf::Value* d = member(*volume, "attenuationDistance"); d && d->IsNumber())
+                out.attenuation_distance = value(d->GetNumberAsDouble(), name + ": attenuationDistance",
+                                                 std::numeric_limits<float>::min());
+        }
         out.metallic_roughness_texture = texture_index(pbr.metallicRoughnessTexture.index,
                                                        pbr.metallicRoughnessTexture.texCoord,
                                                        name + ": metallicRoughnessTexture");
         out.emissive_texture = texture_index(m.emissiveTexture.index, m.emissiveTexture.texCoord,
                                              name + ": emissiveTexture");
+        if (pbr.metallicRoughnessTexture.extensions.count("KHR_texture_transform") ||
+            m.emissiveTexture.extensions.count("KHR_texture_transform"))
+            warn(name + ": KHR_texture_transform is read on baseColorTexture and normalTexture only; ignored on the "
+                        "metallic-roughness and emissive textures");
         const float strength = value(number(extension(m.extensions, "KHR_materials_emissive_strength"),
                                             "emissiveStrength", 1.0),
                                      name + ": emissiveStrength", 0.0f);
@@ -354,6 +383,23 @@ struct Loader {
         out.specular_color = values<3>(numbers(specular, "specularColorFactor", {}), name + ": specularColorFactor",
                                        glm::vec3(1.0f), 0.0f);
         return out;
+    }
+
+    // A texture reference's KHR_texture_transform (offset, rotation, scale: any float) into `out`. Its texCoord
+    // overrides the reference's; only TEXCOORD_0 is read, so another set is warned about and the texture ignored
+    // (returns false).
+    bool texture_transform(const tinygltf::ExtensionMap& extensions, int tex_coord, const std::string& what,
+                           TextureTransform& out) {
+        const tinygltf::Value* t = extension(extensions, "KHR_texture_transform");
+        if (t) {
+            out.offset = values<2>(numbers(t, "offset", {}), what + " offset", glm::vec2(0.0f));
+            out.rotation = value(number(t, "rotation", 0.0), what + " rotation");
+            out.scale = values<2>(numbers(t, "scale", {}), what + " scale", glm::vec2(1.0f));
+            if (const tinygltf::Value* c = member(*t, "texCoord"); c && c->IsNumber()) tex_coord = c->GetNumberAsInt();
+        }
+        if (tex_coord == 0) return true;
+        warn(what + " uses TEXCOORD_" + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported, texture ignored");
+        return false;
     }
 
     Texture texture(const tinygltf::Texture& t, std::size_t index) {

@@ -2,10 +2,12 @@
 #include "gltf_io.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <system_error>
 
+#include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
 #include "gltf_common.h"
@@ -84,6 +86,9 @@ struct Writer {
             if (p.uvs.size() == p.positions.size())
                 prim.attributes["TEXCOORD_0"] =
                     add_floats(&p.uvs[0].x, p.uvs.size(), 2, TINYGLTF_TYPE_VEC2, TINYGLTF_TARGET_ARRAY_BUFFER);
+            if (p.tangents.size() == p.positions.size())
+                prim.attributes["TANGENT"] = add_floats(&p.tangents[0].x, p.tangents.size(), 4, TINYGLTF_TYPE_VEC4,
+                                                        TINYGLTF_TARGET_ARRAY_BUFFER);
             if (!p.indices.empty()) prim.indices = add_indices(p.indices);
             out.primitives.push_back(prim);
         }
@@ -96,7 +101,23 @@ struct Writer {
         out.pbrMetallicRoughness.baseColorFactor = {m.base_color.r, m.base_color.g, m.base_color.b, m.base_color.a};
         out.pbrMetallicRoughness.metallicFactor = m.metallic;
         out.pbrMetallicRoughness.roughnessFactor = m.roughness;
-        if (m.base_color_texture >= 0) out.pbrMetallicRoughness.baseColorTexture.index = m.base_color_texture;
+        if (m.base_color_texture >= 0) {
+            out.pbrMetallicRoughness.baseColorTexture.index = m.base_color_texture;
+            texture_transform(m.base_color_transform, out.pbrMetallicRoughness.baseColorTexture.extensions);
+        }
+        if (m.normal_texture >= 0) {
+            out.normalTexture.index = m.normal_texture;
+            out.normalTexture.scale = m.normal_scale;
+            texture_transform(m.normal_transform, out.normalTexture.extensions);
+        }
+        if (m.thickness != 0.0f || m.attenuation_color != glm::vec3(1.0f) || std::isfinite(m.attenuation_distance)) {
+            tinygltf::Value::Object volume{{"thicknessFactor", tinygltf::Value(double(m.thickness))},
+                                           {"attenuationColor", numbers(glm::value_ptr(m.attenuation_color), 3)}};
+            if (std::isfinite(m.attenuation_distance))   // absent means infinite
+                volume["attenuationDistance"] = tinygltf::Value(double(m.attenuation_distance));
+            out.extensions["KHR_materials_volume"] = tinygltf::Value(volume);
+            use_extension("KHR_materials_volume");
+        }
         if (m.metallic_roughness_texture >= 0)
             out.pbrMetallicRoughness.metallicRoughnessTexture.index = m.metallic_roughness_texture;
         if (m.emissive_texture >= 0) out.emissiveTexture.index = m.emissive_texture;
@@ -131,6 +152,21 @@ struct Writer {
             use_extension("KHR_materials_specular");
         }
         return out;
+    }
+
+    static tinygltf::Value numbers(const float* v, int n) {
+        tinygltf::Value::Array a;
+        for (int i = 0; i < n; ++i) a.push_back(tinygltf::Value(double(v[i])));
+        return tinygltf::Value(a);
+    }
+
+    // KHR_texture_transform on a texture reference, when the transform is not the identity.
+    void texture_transform(const TextureTransform& t, tinygltf::ExtensionMap& on) {
+        if (t.is_identity()) return;
+        on["KHR_texture_transform"] = object({{"offset", numbers(glm::value_ptr(t.offset), 2)},
+                                                      {"rotation", tinygltf::Value(double(t.rotation))},
+                                                      {"scale", numbers(glm::value_ptr(t.scale), 2)}});
+        use_extension("KHR_texture_transform");
     }
 
     static tinygltf::Value object(std::initializer_list<std::pair<const std::string, tinygltf::Value>> members) {

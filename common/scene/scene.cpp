@@ -8,6 +8,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "effects.h"
+#include "tangents.h"
+
 namespace rt {
 
 glm::mat4 Node::local_transform() const {
@@ -175,6 +178,28 @@ void place_camera(Camera& cam, const glm::mat4& world) {
     cam.right = glm::normalize(glm::cross(cam.forward, cam.up));
 }
 
+// Whether a triangle of the frame uses a material with a normal map: only then are tangents flattened.
+bool frame_uses_normal_maps(const SceneAsset& asset, const std::vector<Node>& nodes,
+                            const std::vector<WorldNode>& order, const std::vector<Material>& materials,
+                            std::size_t texture_count) {
+    for (const WorldNode& wn : order) {
+        const int mesh = nodes[std::size_t(wn.index)].mesh;
+        if (mesh < 0 || std::size_t(mesh) >= asset.meshes.size()) continue;
+        for (const Primitive& prim : asset.meshes[std::size_t(mesh)].primitives)
+            if (prim.material >= 0 && std::size_t(prim.material) < materials.size() && !prim.positions.empty() &&
+                material_has_normal_map(materials[std::size_t(prim.material)], texture_count))
+                return true;
+    }
+    return false;
+}
+
+// A tangent carried to world space: its direction like an edge (the upper 3x3 of the matrix), its handedness
+// flipped by a mirroring matrix (cross(M n', M t) changes sign with det M). Zero when the result is not usable.
+glm::vec4 world_tangent(const glm::mat3& m, bool mirrors, const glm::vec4& t) {
+    const glm::vec3 xyz = safe_normalize(m * glm::vec3(t), glm::vec3(0.0f));
+    return glm::vec4(xyz, (t.w < 0.0f) != mirrors ? -1.0f : 1.0f);
+}
+
 }  // namespace
 
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles) {
@@ -184,7 +209,8 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     scene.materials = asset.materials;
     scene.textures = asset.textures;
     for (Material& m : scene.materials)
-        for (int* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.emissive_texture, &m.transmission_texture})
+        for (int* t : {&m.base_color_texture, &m.metallic_roughness_texture, &m.emissive_texture,
+                       &m.transmission_texture, &m.normal_texture})
             if (*t >= int(scene.textures.size())) *t = -1;
     std::size_t dropped = 0;
     int default_material = -1;   // index of the appended glTF default material, once needed
@@ -200,6 +226,8 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     scene.normals.reserve(3 * triangles);
     scene.uvs.reserve(3 * triangles);
     scene.material_ids.reserve(triangles);
+    const bool want_tangents = frame_uses_normal_maps(asset, nodes, order, scene.materials, scene.textures.size());
+    if (want_tangents) scene.tangents.reserve(3 * triangles);
 
     const Camera* chosen_camera = nullptr;
     glm::mat4 camera_world(1.0f);
@@ -226,6 +254,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
         // Normals transform with the inverse transpose (a mirroring matrix thereby also flips the winding's normal,
         // matching glTF 2.0, 3.7.2.1: a negative determinant reverses the front-face winding).
         const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
+        const bool mirrors = glm::determinant(glm::mat3(world)) < 0.0f;
 
         for (const Primitive& prim : asset.meshes[std::size_t(node.mesh)].primitives) {
             const std::size_t nv = prim.positions.size();
@@ -245,6 +274,9 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
                 }
                 material = std::uint32_t(default_material);
             }
+            std::vector<glm::vec4> tangents;   // the primitive's own, or generated; only for normal-mapped materials
+            if (want_tangents && material_has_normal_map(scene.materials[material], scene.textures.size()))
+                tangents = primitive_tangents(prim);
 
             for (std::size_t t = 0; t + 2 < ni; t += 3) {
                 std::uint32_t idx[3];
@@ -274,6 +306,10 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
                     scene.normals.push_back(has_normals ? safe_normalize(normal_matrix * prim.normals[idx[k]], face)
                                                         : face);
                     scene.uvs.push_back(has_uvs ? prim.uvs[idx[k]] : glm::vec2(0.0f));
+                    if (want_tangents)
+                        scene.tangents.push_back(tangents.empty() ? glm::vec4(0.0f)
+                                                                  : world_tangent(glm::mat3(world), mirrors,
+                                                                                  tangents[idx[k]]));
                     scene.bounds.add(p[k]);
                 }
                 scene.material_ids.push_back(material);

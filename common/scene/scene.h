@@ -50,6 +50,16 @@ struct Texture {
     bool nearest = false;              // glTF sampler magFilter NEAREST; else bilinear
 };
 
+// KHR_texture_transform: uv' = offset + R(rotation) S(scale) uv, glTF's T * R * S (the rotation turns uv
+// counter-clockwise in the image, i.e. clockwise in uv with v down).
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;              // radians
+    glm::vec2 scale{1.0f};
+    bool is_identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
+    bool operator==(const TextureTransform&) const = default;
+};
+
 // glTF metallic-roughness material plus the extensions the course reads. Defaults are glTF's defaults.
 // docs/shading.md maps these to Whitted's coefficients.
 struct Material {
@@ -67,6 +77,16 @@ struct Material {
     int metallic_roughness_texture = -1;   // linear: green scales roughness, blue scales metallic
     int emissive_texture = -1;             // sRGB: scales emissive
     int transmission_texture = -1;         // linear: red scales transmission (KHR_materials_transmission)
+    // KHR_materials_volume (docs/shading.md, "Absorption"): Beer-Lambert inside a transmitting volume.
+    glm::vec3 attenuation_color{1.0f};  // [0, 1]: the colour white light takes after attenuation_distance
+    float attenuation_distance = std::numeric_limits<float>::infinity();   // > 0; infinite = no absorption
+    float thickness = 0.0f;             // thicknessFactor; 0 = thin-walled (no volume, no absorption)
+    // Normal map (docs/shading.md, "Normal maps"): a linear (not sRGB) tangent-space normal texture.
+    int normal_texture = -1;            // index into textures, or -1
+    float normal_scale = 1.0f;          // scales the map's x and y
+    // KHR_texture_transform of the two textures (docs/shading.md, "Texture transform").
+    TextureTransform base_color_transform;
+    TextureTransform normal_transform;
 };
 
 enum class LightType : int { Point = 0, Spot = 1, Directional = 2 };
@@ -110,6 +130,7 @@ struct Primitive {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;     // empty = computed (flat, per face) when flattened
     std::vector<glm::vec2> uvs;         // empty = no texture coordinates
+    std::vector<glm::vec4> tangents;    // glTF TANGENT (xyz, w = handedness); empty = generated when needed
     std::vector<std::uint32_t> indices; // empty = non-indexed (every three positions form a triangle)
     int material = -1;                  // -1 = the glTF default material
 };
@@ -173,6 +194,9 @@ struct Scene {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;     // shading normals, unit length
     std::vector<glm::vec2> uvs;         // (0,0) where the mesh has none
+    // Tangents (xyz unit, w = +-1 handedness), one per vertex like normals, only when a used material has a normal
+    // map (docs/shading.md, "Normal maps"); empty otherwise.
+    std::vector<glm::vec4> tangents;
     std::vector<std::uint32_t> material_ids;   // one per triangle
     std::vector<Material> materials;    // never empty: a default material is appended when needed
     std::vector<Texture> textures;

@@ -14,14 +14,17 @@
 #define RT_LIGHT_SPOT 1
 #define RT_LIGHT_DIRECTIONAL 2
 
-struct Material {                    // 112 bytes, std430 (GpuMaterial)
+struct Material {                    // 160 bytes, std430 (GpuMaterial)
     vec4 base_color;
     vec3 emissive;       int base_color_texture;   // textures: -1 = none
     vec3 specular_color; float metallic;
     float roughness; float transmission; float ior; float specular;
-    vec3 attenuation;    float thickness;
+    vec3 attenuation;    float thickness;          // attenuation = sigma_a per channel (0: no absorption)
     int normal_texture;  float normal_scale;  int alpha_mode;  float alpha_cutoff;
     int metallic_roughness_texture; int emissive_texture; int transmission_texture; int material_pad1;
+    vec4 base_color_uv_matrix;                     // KHR_texture_transform (rt::uv_matrix): a, b, c, d
+    vec4 normal_uv_matrix;
+    vec2 base_color_uv_offset; vec2 normal_uv_offset;
 };
 
 struct Light {                       // 64 bytes, std430 (GpuLight)
@@ -38,6 +41,7 @@ struct TextureInfo {                 // 16 bytes (GpuTextureInfo): texel (x, y) 
 
 // Triangle i uses entries 3i, 3i+1, 3i+2.
 layout(std430, binding = RT_BINDING_POSITIONS) RT_SCENE_ACCESS buffer ScenePositions { vec4 rt_positions[]; };
+// With normal maps, vertex i's tangent (xyz, w = handedness) is rt_normals[3 * rt_triangle_count + i].
 layout(std430, binding = RT_BINDING_NORMALS) RT_SCENE_ACCESS buffer SceneNormals { vec4 rt_normals[]; };
 layout(std430, binding = RT_BINDING_UVS) RT_SCENE_ACCESS buffer SceneUvs { vec2 rt_uvs[]; };
 layout(std430, binding = RT_BINDING_MATERIAL_IDS) RT_SCENE_ACCESS buffer SceneMaterialIds { uint rt_material_ids[]; };

@@ -4,6 +4,7 @@
 // llvmpipe); pow() and the cone cosines differ: cosines come precomputed from the CPU (Light.cos_inner/cos_outer),
 // pow is the GPU's (unit tests allow a relative error for shade_light).
 #include "scene.glsl"
+#include "texture_transform.glsl"
 
 #define RT_FRESNEL_SCHLICK 0
 #define RT_FRESNEL_EXACT 1
@@ -68,7 +69,8 @@ float fresnel(int mode, float cos_i, float eta) {
 
 int rt_wrap(int x, int n) { return x >= 0 ? x % n : (n - 1) - ((-(x + 1)) % n); }   // ((x % n) + n) % n
 
-// srgb: decode the colour channels from sRGB (colour textures), else bytes / 255 (data: metallicRoughnessTexture).
+// srgb: decode the colour channels from sRGB (colour textures), else every channel byte / 255 like alpha (data:
+// normal maps, metallicRoughnessTexture, transmissionTexture).
 vec4 rt_texel(TextureInfo info, int x, int y, bool srgb) {
     x = rt_wrap(x, info.width);
     y = rt_wrap(y, info.height);
@@ -77,7 +79,7 @@ vec4 rt_texel(TextureInfo info, int x, int y, bool srgb) {
     return vec4(rt_srgb_lut[p.r], rt_srgb_lut[p.g], rt_srgb_lut[p.b], rt_alpha_lut[p.a]);
 }
 
-vec4 rt_sample(int texture_index, vec2 uv, bool srgb) {
+vec4 sample_texture_decoded(int texture_index, vec2 uv, bool srgb) {
     const TextureInfo info = rt_texture_info(texture_index);
     if (info.width <= 0 || info.height <= 0 || !rt_isfinite(uv.x) || !rt_isfinite(uv.y)) return vec4(1.0);
     precise vec2 f = uv - floor(uv);
@@ -92,8 +94,8 @@ vec4 rt_sample(int texture_index, vec2 uv, bool srgb) {
     return rt_mix(top, bottom, ay);
 }
 
-vec4 sample_texture(int texture_index, vec2 uv) { return rt_sample(texture_index, uv, true); }
-vec4 sample_texture_linear(int texture_index, vec2 uv) { return rt_sample(texture_index, uv, false); }
+vec4 sample_texture(int texture_index, vec2 uv) { return sample_texture_decoded(texture_index, uv, true); }
+vec4 sample_texture_linear(int texture_index, vec2 uv) { return sample_texture_decoded(texture_index, uv, false); }
 
 // What a material's textures say at one point (rt::SurfaceTexels / sample_surface_textures in shading.cpp): each
 // scales its factor; a texture the material does not have reads 1.
@@ -109,7 +111,8 @@ SurfaceTexels surface_texels(vec4 base) { return SurfaceTexels(base, 1.0, 1.0, v
 
 SurfaceTexels sample_surface_textures(Material m, vec2 uv) {
     SurfaceTexels t = surface_texels(vec4(1.0));
-    if (m.base_color_texture >= 0) t.base = sample_texture(m.base_color_texture, uv);
+    if (m.base_color_texture >= 0)
+        t.base = sample_texture(m.base_color_texture, rt_transform_uv(m.base_color_uv_matrix, m.base_color_uv_offset, uv));
     if (m.metallic_roughness_texture >= 0) {
         const vec4 mr = sample_texture_linear(m.metallic_roughness_texture, uv);
         t.roughness = mr.g;

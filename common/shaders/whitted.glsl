@@ -1,8 +1,14 @@
 // Whitted's per-hit logic for the GPU stages: the body of Whitted::radiance (common/trace/whitted.h) cut into the
 // pieces the wavefront passes need (common/shaders/wavefront/shade.comp). docs/shading.md is the contract; the
 // arithmetic comes from the GLSL twins in shading.glsl, offset.glsl and scene.glsl, so a hit shades as on the CPU.
-// Compile-time switches (rt::gpu::effect_defines): ENABLE_TEXTURES samples the material's textures.
+// Compile-time switches (rt::gpu::effect_defines): ENABLE_TEXTURES samples the material's textures,
+// ENABLE_NORMAL_MAPS applies normal maps, ENABLE_ABSORPTION attenuates rays inside volumes (whitted_absorption).
 #include "shading.glsl"
+// (#include is resolved before the GLSL preprocessor runs, once per file, so these cannot sit under #ifdef; only the
+// calls below are conditional, and uncalled functions leave nothing in the program.)
+#include "texture_transform.glsl"
+#include "normal_map.glsl"
+#include "absorption.glsl"
 #include "offset.glsl"
 #include "intersect.glsl"
 
@@ -16,6 +22,13 @@ WhittedSurface whitted_surface(Ray ray, Hit hit) {
     WhittedSurface w;
     w.point = surface_point(ray, uint(hit.triangle), hit.u, hit.v);
     const Material material = rt_materials[w.point.material];
+#ifdef ENABLE_NORMAL_MAPS
+    if (material.normal_texture >= 0) {
+        precise float bw = 1.0 - hit.u - hit.v;
+        w.point.shading_normal = normal_mapped(uint(hit.triangle), bw, hit.u, hit.v, w.point.uv,
+                                               w.point.geometric_normal, w.point.shading_normal, material);
+    }
+#endif
     SurfaceTexels texels = surface_texels(vec4(1.0));
 #ifdef ENABLE_TEXTURES
     texels = sample_surface_textures(material, w.point.uv);
@@ -23,6 +36,15 @@ WhittedSurface whitted_surface(Ray ray, Hit hit) {
     w.coefficients = surface_coefficients(material, texels);
     return w;
 }
+
+#ifdef ENABLE_ABSORPTION
+// Whitted::radiance's `absorbed`: a hit on the back face of an absorbing volume ends a segment of length t inside
+// it (docs/shading.md, "Absorption"); 1 otherwise.
+vec3 whitted_absorption(WhittedSurface w, float t) {
+    if (w.point.front_face) return vec3(1.0);
+    return transmittance(rt_materials[w.point.material].attenuation, t);
+}
+#endif
 
 // The part of the local illumination that needs no shadow ray: emission plus the constant ambient term.
 vec3 whitted_emission_ambient(SurfaceCoefficients s) {

@@ -1,5 +1,7 @@
 #include "shading.h"
 
+#include "texture_transform.h"
+
 #include <array>
 
 namespace rt {
@@ -16,43 +18,42 @@ const std::array<float, 256>& srgb_table() {
     return table;
 }
 
-template <bool Srgb>
-glm::vec4 texel(const Texture& tex, int x, int y) {
+glm::vec4 texel(const Texture& tex, int x, int y, bool srgb) {
     // REPEAT wrapping for any integer, negative included.
     x = ((x % tex.width) + tex.width) % tex.width;
     y = ((y % tex.height) + tex.height) % tex.height;
     const std::uint8_t* p = &tex.rgba8[(std::size_t(y) * std::size_t(tex.width) + std::size_t(x)) * 4];
-    if (!Srgb) return {float(p[0]) / 255.0f, float(p[1]) / 255.0f, float(p[2]) / 255.0f, float(p[3]) / 255.0f};
+    if (!srgb) return glm::vec4(float(p[0]), float(p[1]), float(p[2]), float(p[3])) / 255.0f;
     const auto& lut = srgb_table();
     return {lut[p[0]], lut[p[1]], lut[p[2]], float(p[3]) / 255.0f};
 }
 
-template <bool Srgb>
-glm::vec4 sample(const Texture& tex, glm::vec2 uv) {
+glm::vec4 sample(const Texture& tex, glm::vec2 uv, bool srgb) {
     if (tex.width <= 0 || tex.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return glm::vec4(1.0f);
     // Keep only the fractional part first so huge UVs do not lose the texel position to float rounding.
     uv -= glm::floor(uv);
     const float fx = uv.x * float(tex.width), fy = uv.y * float(tex.height);
-    if (tex.nearest) return texel<Srgb>(tex, int(fx), int(fy));
+    if (tex.nearest) return texel(tex, int(fx), int(fy), srgb);
     // Bilinear between the four texel centres around (fx, fy).
     const float sx = fx - 0.5f, sy = fy - 0.5f;
     const float x0f = std::floor(sx), y0f = std::floor(sy);
     const float ax = sx - x0f, ay = sy - y0f;
     const int x0 = int(x0f), y0 = int(y0f);
-    const glm::vec4 top = glm::mix(texel<Srgb>(tex, x0, y0), texel<Srgb>(tex, x0 + 1, y0), ax);
-    const glm::vec4 bottom = glm::mix(texel<Srgb>(tex, x0, y0 + 1), texel<Srgb>(tex, x0 + 1, y0 + 1), ax);
+    const glm::vec4 top = glm::mix(texel(tex, x0, y0, srgb), texel(tex, x0 + 1, y0, srgb), ax);
+    const glm::vec4 bottom = glm::mix(texel(tex, x0, y0 + 1, srgb), texel(tex, x0 + 1, y0 + 1, srgb), ax);
     return glm::mix(top, bottom, ay);
 }
 
 }  // namespace
 
-glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv) { return sample<true>(tex, uv); }
-glm::vec4 sample_texture_linear(const Texture& tex, glm::vec2 uv) { return sample<false>(tex, uv); }
+glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv, bool srgb) { return sample(tex, uv, srgb); }
+glm::vec4 sample_texture_linear(const Texture& tex, glm::vec2 uv) { return sample(tex, uv, false); }
 
 SurfaceTexels sample_surface_textures(const Material& m, const std::vector<Texture>& textures, glm::vec2 uv) {
     SurfaceTexels t;
     const auto has = [&](int i) { return i >= 0 && std::size_t(i) < textures.size(); };
-    if (has(m.base_color_texture)) t.base = sample_texture(textures[std::size_t(m.base_color_texture)], uv);
+    if (has(m.base_color_texture))
+        t.base = sample_texture(textures[std::size_t(m.base_color_texture)], transform_uv(m.base_color_transform, uv));
     if (has(m.metallic_roughness_texture)) {
         const glm::vec4 mr = sample_texture_linear(textures[std::size_t(m.metallic_roughness_texture)], uv);
         t.roughness = mr.g;

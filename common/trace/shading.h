@@ -78,8 +78,9 @@ inline float linear_to_srgb(float c) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-// Texture lookup with REPEAT wrapping; nearest or bilinear per the texture. Returns linear RGBA (sRGB decoded).
-glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv);
+// Texture lookup with REPEAT wrapping; nearest or bilinear per the texture. Returns linear RGBA: colour channels
+// sRGB-decoded, or (srgb = false, normal maps) like alpha, byte / 255.
+glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv, bool srgb = true);
 
 // The same lookup for textures that hold data, not colour (metallicRoughnessTexture): bytes / 255, no sRGB decode.
 glm::vec4 sample_texture_linear(const Texture& tex, glm::vec2 uv);

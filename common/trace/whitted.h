@@ -16,9 +16,12 @@
 #include "../app/hit_record.h"
 #include "../scene/effects.h"
 #include "../scene/scene.h"
+#include "absorption.h"
 #include "intersect.h"
+#include "normal_map.h"
 #include "offset.h"
 #include "shading.h"
+#include "texture_transform.h"
 
 namespace rt {
 
@@ -103,7 +106,7 @@ public:
     // spawning rays once a child's weight falls below the cut-off). With a `log`, every traced ray is recorded under
     // its `path` in the pixel's ray tree (hit_record.h: 1 for the primary ray, 2p and 2p + 1 for the reflection and
     // refraction children of path p; shadow rays carry their parent's path and their light's index).
-    glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& weight, RayCounters& counters,
+    glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& path_weight, RayCounters& counters,
                        const HitLog* log = nullptr, std::uint32_t path = 1) const {
         Hit<T> hit;
         const bool found = tracer_.closest(ray, hit, counters);
@@ -114,8 +117,20 @@ public:
             log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f);
         }
         if (!found) return scene_.background;
-        const SurfacePoint<T> sp = surface_point(scene_, ray, hit);
+        SurfacePoint<T> sp = surface_point(scene_, ray, hit);
         const Material& material = scene_.materials[sp.material];
+        // Absorption (docs/shading.md): a ray that reaches the back face of an absorbing volume travelled inside it
+        // for hit.t; what comes back along it, and the weight its children inherit, keep exp(-sigma_a t).
+        glm::vec3 absorbed(1.0f);
+        if (settings_.effects.absorption && !sp.front_face)
+            absorbed = transmittance(absorption_coefficient(material), float(hit.t));
+        const glm::vec3 weight = path_weight * absorbed;
+        if (settings_.effects.normal_maps && material.normal_texture >= 0) {
+            const T w = T(1) - hit.u - hit.v;
+            sp.shading_normal = normal_mapped(scene_, std::size_t(hit.triangle), float(w), float(hit.u),
+                                              float(hit.v), sp.uv, glm::vec3(sp.geometric_normal),
+                                              sp.shading_normal, material);
+        }
         SurfaceTexels texels;
         if (settings_.effects.textures) texels = sample_surface_textures(material, scene_.textures, sp.uv);
         const SurfaceCoefficients s = surface_coefficients(material, texels);
@@ -144,7 +159,7 @@ public:
             }
             color += shade_light(s, incidence, n, to_light, -d);
         }
-        if (depth >= settings_.max_depth) return color;
+        if (depth >= settings_.max_depth) return absorbed * color;
 
         // BEGIN EXERCISE 01.whitted_recursion: spawn the reflection ray (reflect_dir) and the refraction ray
         // (refract_dir, none at total internal reflection) when the scene's effects ask for them and the child's weight
@@ -178,9 +193,9 @@ public:
                                                       2 * path + 1);
             }
         }
-        return color;
+        return absorbed * color;
         // STUB: (void)weight;
-        // STUB: return color;
+        // STUB: return absorbed * color;
         // END EXERCISE
     }
 

@@ -36,7 +36,11 @@ void shade(uint i, WavefrontHit entry) {
     const SurfacePoint sp = w.point;
     const vec3 d = ray.direction;
     const vec3 n = sp.shading_normal;
+#ifdef ENABLE_ABSORPTION
+    const vec3 weight = incoming.weight * whitted_absorption(w, hit.t);   // the segment this ray ran inside a volume
+#else
     const vec3 weight = incoming.weight;
+#endif
 
     const uint n_hits = wf_input_count;
 

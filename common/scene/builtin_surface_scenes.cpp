@@ -1,0 +1,176 @@
+#include "builtin_surface_scenes.h"
+
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "builtin_scenes.h"
+
+namespace rt {
+
+namespace {
+
+Material material(const std::string& name, glm::vec3 color, float metallic, float roughness) {
+    Material m;
+    m.name = name;
+    m.base_color = glm::vec4(color, 1.0f);
+    m.metallic = metallic;
+    m.roughness = roughness;
+    return m;
+}
+
+int add(SceneAsset& a, const Material& m) {
+    a.materials.push_back(m);
+    return int(a.materials.size() - 1);
+}
+
+void add_mesh_node(SceneAsset& a, const std::string& name, Primitive p) {
+    Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(std::move(p));
+    a.meshes.push_back(std::move(mesh));
+    Node n;
+    n.name = name;
+    n.mesh = int(a.meshes.size() - 1);
+    a.nodes.push_back(n);
+    a.roots.push_back(int(a.nodes.size() - 1));
+}
+
+void add_camera_and_light(SceneAsset& a, const glm::vec3& eye, const glm::vec3& target, const glm::vec3& light,
+                          float intensity) {
+    Camera c;
+    c.name = "camera";
+    c.yfov = glm::radians(45.0f);
+    a.cameras.push_back(c);
+    Node cn;
+    cn.name = "camera";
+    cn.camera = 0;
+    cn.translation = eye;
+    const glm::vec3 forward = glm::normalize(target - eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    cn.rotation = glm::normalize(glm::quat_cast(glm::mat3(right, glm::cross(right, forward), -forward)));
+    a.nodes.push_back(cn);
+    a.roots.push_back(int(a.nodes.size() - 1));
+    Light l;
+    l.name = "light";
+    l.intensity = intensity;
+    a.lights.push_back(l);
+    Node ln;
+    ln.name = "light";
+    ln.light = 0;
+    ln.translation = light;
+    a.nodes.push_back(ln);
+    a.roots.push_back(int(a.nodes.size() - 1));
+}
+
+// A quad centred at c spanning c +- u +- v, facing cross(u, v); uv (0, 0) at c - u + v (top left, v down) to
+// (uv_scale, uv_scale).
+Primitive quad(const glm::vec3& c, const glm::vec3& u, const glm::vec3& v, float uv_scale, int material_index) {
+    Primitive p;
+    p.material = material_index;
+    const glm::vec3 n = glm::normalize(glm::cross(u, v));
+    p.positions = {c - u - v, c + u - v, c + u + v, c - u + v};
+    p.normals = {n, n, n, n};
+    p.uvs = {{0, uv_scale}, {uv_scale, uv_scale}, {uv_scale, 0}, {0, 0}};
+    p.indices = {0, 1, 2, 0, 2, 3};
+    return p;
+}
+
+// A 2x2 sRGB checker, nearest filtering.
+Texture checker(const std::uint8_t (&a)[4], const std::uint8_t (&b)[4]) {
+    Texture t;
+    t.name = "checker";
+    t.width = t.height = 2;
+    t.nearest = true;
+    for (int i = 0; i < 4; ++i) {
+        const std::uint8_t* c = (i == 0 || i == 3) ? a : b;
+        for (int k = 0; k < 4; ++k) t.rgba8.push_back(c[k]);
+    }
+    return t;
+}
+
+// A 32x32 tangent-space normal texture: one round bump (a spherical cap, radius 0.8 of the half cell) per texture,
+// flat (0, 0, 1) around it. Texel rows go down the image (v grows), the map's +Y up it: y = -(row offset).
+Texture bump_normals() {
+    Texture t;
+    t.name = "bumps";
+    t.width = t.height = 32;
+    for (int row = 0; row < 32; ++row)
+        for (int col = 0; col < 32; ++col) {
+            const float x = (float(col) + 0.5f) / 16.0f - 1.0f, y = -((float(row) + 0.5f) / 16.0f - 1.0f);
+            const float r = 0.8f, d2 = x * x + y * y;
+            glm::vec3 n(0.0f, 0.0f, 1.0f);
+            if (d2 < r * r) n = glm::normalize(glm::vec3(x, y, std::sqrt(r * r - d2)));
+            for (int k = 0; k < 3; ++k) t.rgba8.push_back(std::uint8_t(std::lround((n[k] * 0.5f + 0.5f) * 255.0f)));
+            t.rgba8.push_back(255);
+        }
+    return t;
+}
+
+}  // namespace
+
+SceneAsset absorption_scene() {
+    SceneAsset a;
+    a.name = "absorption";
+    a.background = glm::vec3(0.6f, 0.65f, 0.7f);
+    a.textures.push_back(checker({230, 230, 230, 255}, {40, 40, 40, 255}));
+    Material checkered = material("checker", glm::vec3(1.0f), 0.0f, 1.0f);
+    checkered.base_color_texture = 0;
+    const int checker_m = add(a, checkered);
+    // Blue-green glass: white light keeps (0.25, 0.65, 0.9) after 0.3 m inside.
+    Material volume = material("absorbing glass", glm::vec3(1.0f), 0.0f, 0.0f);
+    volume.transmission = 1.0f;
+    volume.thickness = 1.0f;
+    volume.attenuation_color = glm::vec3(0.25f, 0.65f, 0.9f);
+    volume.attenuation_distance = 0.3f;
+    const int volume_m = add(a, volume);
+    Material thin = volume;
+    thin.name = "thin-walled glass";
+    thin.thickness = 0.0f;
+    const int thin_m = add(a, thin);
+
+    add_mesh_node(a, "floor", quad({0, 0, -1}, {4, 0, 0}, {0, 0, -3}, 6.0f, checker_m));
+    add_mesh_node(a, "wall", quad({0, 2, -2.5f}, {4, 0, 0}, {0, 2, 0}, 4.0f, checker_m));
+    const float depths[4] = {0.6f, 0.15f, 0.45f, 0.9f};
+    for (int i = 0; i < 4; ++i) {
+        const float x = -1.8f + 1.2f * float(i), d = depths[i];
+        add_mesh_node(a, "slab " + std::to_string(i),
+                      make_box({x - 0.45f, 0.02f, -0.5f * d}, {x + 0.45f, 1.22f, 0.5f * d}, i == 0 ? thin_m : volume_m));
+    }
+    add_camera_and_light(a, {0.0f, 1.6f, 4.2f}, {0.0f, 0.6f, -0.5f}, {1.5f, 4.0f, 3.0f}, 70.0f);
+    return a;
+}
+
+SceneAsset normal_map_scene() {
+    SceneAsset a;
+    a.name = "normal_map";
+    a.background = glm::vec3(0.25f, 0.3f, 0.4f);
+    a.textures.push_back(bump_normals());
+    Material wall = material("bumpy wall", glm::vec3(0.8f, 0.75f, 0.7f), 0.0f, 0.6f);
+    wall.normal_texture = 0;
+    const int wall_m = add(a, wall);
+    Material floor = material("bumpy floor", glm::vec3(0.5f, 0.6f, 0.7f), 0.0f, 1.0f);
+    floor.normal_texture = 0;
+    floor.normal_scale = 0.7f;
+    floor.normal_transform.rotation = 0.5f;
+    floor.normal_transform.scale = {2.0f, 1.0f};
+    floor.normal_transform.offset = {0.25f, 0.0f};
+    const int floor_m = add(a, floor);
+    Material ball = material("bumpy ball", glm::vec3(0.9f, 0.45f, 0.15f), 0.0f, 0.4f);
+    ball.normal_texture = 0;
+    ball.normal_transform.scale = {8.0f, 4.0f};
+    const int ball_m = add(a, ball);
+    const int mirror_m = add(a, material("mirror", glm::vec3(0.9f), 1.0f, 0.0f));
+
+    Primitive wall_quad = quad({0, 1.5f, -2}, {3, 0, 0}, {0, 1.5f, 0}, 4.0f, wall_m);
+    wall_quad.tangents.assign(4, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));   // given, as a glTF TANGENT attribute
+    add_mesh_node(a, "wall", std::move(wall_quad));
+    add_mesh_node(a, "floor", quad({0, 0, 0}, {3, 0, 0}, {0, 0, -2}, 3.0f, floor_m));
+    add_mesh_node(a, "bumpy ball", make_uv_sphere({-0.9f, 0.7f, 0.0f}, 0.7f, 24, 12, ball_m));
+    add_mesh_node(a, "mirror ball", make_uv_sphere({0.9f, 0.7f, 0.3f}, 0.7f, 24, 12, mirror_m));
+    add_camera_and_light(a, {0.0f, 1.6f, 4.6f}, {0.0f, 0.9f, -0.5f}, {2.5f, 3.5f, 2.5f}, 55.0f);
+    return a;
+}
+
+}  // namespace rt
