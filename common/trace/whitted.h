@@ -16,6 +16,7 @@
 #include "../app/hit_record.h"
 #include "../scene/effects.h"
 #include "../scene/scene.h"
+#include "environment.h"
 #include "intersect.h"
 #include "offset.h"
 #include "shading.h"
@@ -113,7 +114,7 @@ public:
                                                    : HitRecordKind::Reflection;
             log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f);
         }
-        if (!found) return scene_.background;
+        if (!found) return miss_radiance(scene_, glm::vec3(ray.direction));   // environment.h
         const SurfacePoint<T> sp = surface_point(scene_, ray, hit);
         const Material& material = scene_.materials[sp.material];
         glm::vec4 tex(1.0f);
