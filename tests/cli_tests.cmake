@@ -117,6 +117,12 @@ function(rt_add_cli_tests stage)
              COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
     set_tests_properties(cli.${stage}.${mode} PROPERTIES LABELS "cli;cli-${stage}")
   endforeach()
+  # The environment costs nothing unused, and a map adds no ray (run_environment_case.cmake).
+  add_test(NAME cli.${stage}.environment_costs_nothing_unused
+           COMMAND ${CMAKE_COMMAND} -DEXE=${exe} -DOUT_DIR=${out}/environment_costs -DCOMPARE=$<TARGET_FILE:image_compare>
+                   -DSKY=${PROJECT_SOURCE_DIR}/tests/data/sky_64x32.hdr
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/run_environment_case.cmake)
+  set_tests_properties(cli.${stage}.environment_costs_nothing_unused PROPERTIES LABELS "cli;cli-${stage}")
   add_test(NAME cli.${stage}.extreme_values_stay_finite
            COMMAND ${CMAKE_COMMAND} -DMODE=extreme_values_stay_finite -DEXE=${exe} -DOUT_DIR=${out}
                    -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
