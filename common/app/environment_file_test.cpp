@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 
+#include <OpenImageIO/imageio.h>
 #include <sys/stat.h>
 
 #include "../scene/scene.h"
@@ -116,6 +117,26 @@ TEST(EnvironmentFile, OneChannelIsGreyTwoAreRefusedAlphaIsIgnored) {
     EXPECT_EQ(rgba.texels[0], glm::vec4(1.0f, 2.0f, 3.0f, 1.0f));
 }
 
+// An EXR of 2x1 texels with `channels` float channels, values 1, 2, 3, ... in file order.
+std::string write_exr_channels(const std::string& name, int channels) {
+    const std::string file = (scratch() / name).string();
+    auto out = OIIO::ImageOutput::create(file);
+    std::vector<float> values(std::size_t(2 * channels));
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(i + 1);
+    const OIIO::ImageSpec spec(2, 1, channels, OIIO::TypeDesc::FLOAT);
+    EXPECT_TRUE(out && out->open(file, spec) && out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close());
+    return file;
+}
+
+TEST(EnvironmentFile, FilesWithOneTwoAndFourChannels) {
+    const auto grey = load_environment(write_exr_channels("grey.exr", 1), 0.0f, 1.0f);
+    EXPECT_EQ(grey->texels[1], glm::vec4(2.0f, 2.0f, 2.0f, 1.0f));
+    EXPECT_NE(refusal(write_exr_channels("two.exr", 2)).find("has 2 channels: need 1 (grey) or 3 or more (RGB)"),
+              std::string::npos);
+    const auto rgba = load_environment(write_exr_channels("rgba.exr", 4), 0.0f, 1.0f);
+    EXPECT_EQ(rgba->texels[1], glm::vec4(5.0f, 6.0f, 7.0f, 1.0f));   // R, G, B of the second texel; its A (8) ignored
+}
+
 TEST(EnvironmentFile, NanInfiniteNegativeAndTooBrightTexelsAreRefusedNotClamped) {
     const float inf = std::numeric_limits<float>::infinity();
     const std::string nan = refusal(write_map("nan.exr", 0.5f, {0.1f, std::nanf(""), 0.1f}));
@@ -125,7 +146,7 @@ TEST(EnvironmentFile, NanInfiniteNegativeAndTooBrightTexelsAreRefusedNotClamped)
     EXPECT_NE(refusal(write_map("bright.exr", 0.5f, {2e20f, 0, 0})).find("above 1e20"), std::string::npos);
     // Fine alone, beyond kMaxRadiance once scaled by the intensity (the product is checked in double).
     const std::string scaled = refusal(write_map("scaled.exr", 0.5f, {1e10f, 0, 0}), 0.0f, 1e15f);
-    EXPECT_NE(scaled.find("(times intensity 1e+15): above 1e20"), std::string::npos) << "[" << scaled << "]";
+    EXPECT_NE(scaled.find("(times intensity 1e+15): above 1e20"), std::string::npos) << scaled;
 }
 
 TEST(EnvironmentFile, IntensityOutsideItsRangeIsRefused) {
