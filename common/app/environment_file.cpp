@@ -78,6 +78,7 @@ Environment make_environment(const std::string& file, int width, int height, int
     if (values.size() < texels * std::size_t(channels)) refuse(file, "has fewer values than its size says");
     if (!std::isfinite(intensity) || intensity < 0.0f || intensity > kMaxEnvironmentIntensity)
         refuse(file, "intensity " + number(intensity) + " is not in [0, 1e20]");
+    if (!std::isfinite(rotation_degrees)) refuse(file, "rotation " + number(rotation_degrees) + " is not finite");
     Environment e;
     e.file = file;
     e.width = width;
@@ -93,14 +94,15 @@ Environment make_environment(const std::string& file, int width, int height, int
         for (int k = 0; k < 3; ++k) {
             const float v = t[channels == 1 ? 0 : k];
             const char* why = std::isnan(v) ? "NaN" : std::isinf(v) ? "infinite" : v < 0.0f ? "negative" : nullptr;
-            // Beyond kMaxRadiance, before or after the intensity (checked in double: the product may overflow a float).
-            if (!why && double(v) * double(intensity) > double(kMaxRadiance)) why = "above 1e20 (kMaxRadiance)";
+            // Beyond kMaxRadiance, in the file or once scaled (in double: the product may overflow a float).
+            if (!why && (v > kMaxRadiance || double(v) * double(intensity) > double(kMaxRadiance)))
+                why = "above 1e20 (kMaxRadiance)";
             if (why)
                 refuse(file, "texel (" + std::to_string(i % std::size_t(width)) + ", " +
                                  std::to_string(i / std::size_t(width)) + ") channel " + std::to_string(k) + " is " +
                                  number(v) + (intensity != 1.0f ? " (times intensity " + number(intensity) + ")" : "") +
                                  ": " + why + "; radiance must be finite, >= 0 and <= 1e20");
-            c[k] = v * intensity;
+            c[k] = std::min(v * intensity, kMaxRadiance);   // the float product may round an ulp above
         }
         e.texels[i] = c;
     }

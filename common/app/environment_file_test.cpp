@@ -144,16 +144,20 @@ TEST(EnvironmentFile, NanInfiniteNegativeAndTooBrightTexelsAreRefusedNotClamped)
     EXPECT_NE(refusal(write_map("inf.exr", 0.5f, {inf, 0, 0})).find("infinite"), std::string::npos);
     EXPECT_NE(refusal(write_map("negative.exr", 0.5f, {0, 0, -0.01f})).find("negative"), std::string::npos);
     EXPECT_NE(refusal(write_map("bright.exr", 0.5f, {2e20f, 0, 0})).find("above 1e20"), std::string::npos);
+    // Too bright in the file, even when the intensity would bring it down.
+    EXPECT_NE(refusal(write_map("bright_dimmed.exr", 0.5f, {2e20f, 0, 0}), 0.0f, 0.1f).find("above 1e20"),
+              std::string::npos);
     // Fine alone, beyond kMaxRadiance once scaled by the intensity (the product is checked in double).
     const std::string scaled = refusal(write_map("scaled.exr", 0.5f, {1e10f, 0, 0}), 0.0f, 1e15f);
     EXPECT_NE(scaled.find("(times intensity 1e+15): above 1e20"), std::string::npos) << scaled;
 }
 
-TEST(EnvironmentFile, IntensityOutsideItsRangeIsRefused) {
+TEST(EnvironmentFile, IntensityOutsideItsRangeAndANonFiniteRotationAreRefused) {
     EXPECT_THROW(make_environment("i.exr", 1, 1, 3, {1, 1, 1}, 0.0f, std::nanf("")), InputError);
     EXPECT_THROW(make_environment("i.exr", 1, 1, 3, {1, 1, 1}, 0.0f, -1.0f), InputError);
     EXPECT_THROW(make_environment("i.exr", 1, 1, 3, {1, 1, 1}, 0.0f, std::numeric_limits<float>::infinity()), InputError);
     EXPECT_EQ(make_environment("i.exr", 1, 1, 3, {1, 1, 1}, 0.0f, 0.0f).texels[0], glm::vec4(0, 0, 0, 1));
+    EXPECT_THROW(make_environment("r.exr", 1, 1, 3, {1, 1, 1}, std::nanf(""), 1.0f), InputError);
 }
 
 }  // namespace
