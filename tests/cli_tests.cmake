@@ -77,7 +77,23 @@ function(rt_add_cli_tests stage)
       "bad_path.scene_symlink_loop|cannot read scene .*loop_a: Too many levels of symbolic links|--scene|@DIR@/loop_a|--out|@DIR@/x.png"
       "bad_path.scene_name_too_long|cannot read scene .*nnnn.gltf: File name too long|--scene|@DIR@/@LONG@.gltf|--out|@DIR@/x.png"
       "bad_path.scene_under_regular_file|cannot read scene .*file/x.gltf: Not a directory|--scene|@DIR@/file/x.gltf|--out|@DIR@/x.png"
-      "bad_path.scene_is_fifo|scene .*fifo.png is not a regular file|--scene|@DIR@/fifo.png|--out|@DIR@/x.png")
+      "bad_path.scene_is_fifo|scene .*fifo.png is not a regular file|--scene|@DIR@/fifo.png|--out|@DIR@/x.png"
+      # What rays leaving the scene see (docs/shading.md, "The environment"); sky.hdr is a copy of tests/data's map.
+      "environment.background_syntax|--background: '1,2' is not R,G,B|--background|1,2|--out|@DIR@/x.png"
+      "environment.background_word|--background: '1,x,0' is not R,G,B: 'x' is not a number|--background|1,x,0|--out|@DIR@/x.png"
+      "environment.background_nan|--background: '0,nan,0': nan is not a finite number|--background|0,nan,0|--out|@DIR@/x.png"
+      "environment.background_negative|--background: '0,-1,0': -1 is out of range|--background|0,-1,0|--out|@DIR@/x.png"
+      "environment.background_huge|--background: '1e21,0,0': 1e21 is out of range|--background|1e21,0,0|--out|@DIR@/x.png"
+      "environment.intensity_nan|--environment-intensity: nan is not a finite number|--environment|@DIR@/sky.hdr|--environment-intensity|nan|--out|@DIR@/x.png"
+      "environment.intensity_negative|--environment-intensity: -1 is out of range|--environment|@DIR@/sky.hdr|--environment-intensity|-1|--out|@DIR@/x.png"
+      "environment.intensity_huge|--environment-intensity: 1e30 is out of range|--environment|@DIR@/sky.hdr|--environment-intensity|1e30|--out|@DIR@/x.png"
+      "environment.intensity_times_texel_too_bright|environment .*sky.hdr: texel .* above 1e20|--environment|@DIR@/sky.hdr|--environment-intensity|1e20|--out|@DIR@/x.png"
+      "environment.rotation_inf|--environment-rotation: inf is not a finite number|--environment|@DIR@/sky.hdr|--environment-rotation|inf|--out|@DIR@/x.png"
+      "environment.rotation_without_map|--environment-rotation requires --environment|--environment-rotation|30|--out|@DIR@/x.png"
+      "environment.missing_file|environment .*no_such_sky.hdr: file not found|--environment|@DIR@/no_such_sky.hdr|--out|@DIR@/x.png"
+      "environment.wrong_extension|environment .*target.png: not a .hdr or .exr file|--environment|@DIR@/target.png|--out|@DIR@/x.png"
+      "environment.not_an_image|environment .*broken.hdr: not a readable image|--environment|@DIR@/broken.hdr|--out|@DIR@/x.png"
+      "output_clobbers_input.out_is_environment|--out .*sky.hdr: is the scene's input file|--environment|@DIR@/sky.hdr|--out|@DIR@/sky.hdr")
   # GPU stages: an image whose per-pixel sums do not fit one storage block (forced small with $RT_MAX_SSBO_BYTES; a
   # 16384-wide image on llvmpipe's 128 MiB does the same) is bad input, and so is a malformed limit.
   if(stage IN_LIST RT_GPU_STAGES)
@@ -105,6 +121,12 @@ function(rt_add_cli_tests stage)
              COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
     set_tests_properties(cli.${stage}.${mode} PROPERTIES LABELS "cli;cli-${stage}")
   endforeach()
+  # The environment costs nothing unused, and a map adds no ray (run_environment_case.cmake).
+  add_test(NAME cli.${stage}.environment_costs_nothing_unused
+           COMMAND ${CMAKE_COMMAND} -DEXE=${exe} -DOUT_DIR=${out}/environment_costs -DCOMPARE=$<TARGET_FILE:image_compare>
+                   -DSKY=${PROJECT_SOURCE_DIR}/tests/data/sky_64x32.hdr
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/run_environment_case.cmake)
+  set_tests_properties(cli.${stage}.environment_costs_nothing_unused PROPERTIES LABELS "cli;cli-${stage}")
   add_test(NAME cli.${stage}.extreme_values_stay_finite
            COMMAND ${CMAKE_COMMAND} -DMODE=extreme_values_stay_finite -DEXE=${exe} -DOUT_DIR=${out}
                    -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})

@@ -11,6 +11,7 @@ file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/golden/scenes.txt golden_lines REGEX "^
 set(RT_GOLDEN_CASES "")
 foreach(line IN LISTS golden_lines)
   string(STRIP "${line}" line)
+  string(REPLACE "@SOURCE_DIR@" "${PROJECT_SOURCE_DIR}" line "${line}")   # files of the source tree (tests/data)
   string(REGEX REPLACE "[ \t]+" "|" line "${line}")   # name|scene|arg|arg...
   list(APPEND RT_GOLDEN_CASES "${line}")
 endforeach()

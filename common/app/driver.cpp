@@ -17,6 +17,7 @@
 #include "../scene/builtin_scenes.h"
 #include "../scene/gltf_io.h"
 #include "atomic_file.h"
+#include "environment_file.h"
 #include "heatmap.h"
 #include "hit_file.h"
 #include "input_error.h"
@@ -141,6 +142,14 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     if (options.camera >= int(asset.cameras.size()) && options.camera >= 0)
         throw InputError("--camera " + std::to_string(options.camera) + ": the scene has " +
                          std::to_string(asset.cameras.size()) + " camera(s)");
+    // What rays leaving the scene see: --background replaces the scene's colour, --environment (read and checked
+    // completely now, before any output is touched) replaces it by a map shared by every frame.
+    if (options.background) asset.background = *options.background;
+    std::shared_ptr<const Environment> environment;
+    if (!options.environment.empty()) {
+        environment = load_environment(options.environment, options.environment_rotation, options.environment_intensity);
+        asset.input_files.push_back(options.environment);   // no output may overwrite it
+    }
     if (options.frames > 1 && asset.animations.empty() && !options.render.quiet)
         std::cerr << stage << ": warning: --frames " << options.frames
                   << " on a static scene: every frame is the same image\n";
@@ -193,6 +202,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         } catch (const std::out_of_range& e) {
             throw InputError(std::string("--camera: ") + e.what());
         }
+        scene.environment = environment;
         if (dropped > 0 && frame == 0 && !options.render.quiet)
             std::cerr << "warning: dropped " << dropped << " triangle(s) with non-finite vertices\n";
         RenderSettings settings = options.render;
@@ -242,6 +252,10 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
                                 {"settings", settings_json(options.render)},
                                 {"threads", resolve_thread_count(options.render.threads)},
                                 {"frames", options.frames}};
+        if (environment)
+            extra["environment"] = {{"file", environment->file}, {"width", environment->width},
+                                    {"height", environment->height}, {"rotation_degrees", environment->rotation_degrees},
+                                    {"intensity", environment->intensity}};
         if (options.frames > 1) extra["frame_stats"] = frames;
         if (last_extra.is_object()) extra.update(last_extra);
         const nlohmann::json json = make_stats_json(stage, label, options.render.width, options.render.height,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../scene/effects.h"
+#include "environment_file.h"
 #include "image.h"
 
 namespace rt {
@@ -38,6 +39,27 @@ CLI::Validator number_in(double lo, double hi, bool exclusive_lo) {
             return std::string();
         },
         description);
+}
+
+glm::vec3 parse_background(const std::string& text) {
+    glm::vec3 c(0.0f);
+    std::size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t comma = text.find(',', start);
+        if ((k < 2) != (comma != std::string::npos))
+            throw std::invalid_argument("'" + text + "' is not R,G,B (three numbers separated by commas)");
+        const std::string part = text.substr(start, k < 2 ? comma - start : std::string::npos);
+        char* end = nullptr;
+        const double v = std::strtod(part.c_str(), &end);
+        if (part.empty() || end != part.c_str() + part.size())
+            throw std::invalid_argument("'" + text + "' is not R,G,B: '" + part + "' is not a number");
+        if (!std::isfinite(v)) throw std::invalid_argument("'" + text + "': " + part + " is not a finite number");
+        if (v < 0.0 || v > double(kMaxRadiance))
+            throw std::invalid_argument("'" + text + "': " + part + " is out of range: must be at least 0 and at most 1e+20");
+        c[k] = float(v);
+        start = comma + 1;
+    }
+    return c;
 }
 
 void add_shared_options(CLI::App& app, Options& o) {
@@ -105,6 +127,27 @@ void add_shared_options(CLI::App& app, Options& o) {
             "EV|auto"));
     add_enum(app, "--tone-curve", o.render.exposure.curve, {{"none", ToneCurve::None}, {"aces", ToneCurve::Aces}},
              "After --exposure: none (linear, clips at 1) or aces (filmic shoulder, Narkowicz 2015)");
+    // Rays that leave the scene (docs/shading.md, "The environment"): background, not lighting.
+    app.add_option_function<std::string>(
+           "--background", [&o](const std::string& text) { o.background = parse_background(text); },
+           "R,G,B: linear radiance of rays that leave the scene, instead of the scene's (glTF files: black)")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                try {
+                    parse_background(text);
+                } catch (const std::invalid_argument& e) {
+                    return std::string(e.what());
+                }
+                return std::string();
+            },
+            "R,G,B"));
+    CLI::Option* environment =
+        app.add_option("--environment", o.environment,
+                       "Equirectangular .hdr/.exr map that rays leaving the scene see (not a light); replaces the background");
+    app.add_option("--environment-rotation", o.environment_rotation, "Turn the --environment map by DEGREES about +Y")
+        ->capture_default_str()->check(number_in(-kMaxEnvironmentRotation, kMaxEnvironmentRotation))->needs(environment);
+    app.add_option("--environment-intensity", o.environment_intensity, "Scale the --environment map's radiance")
+        ->capture_default_str()->check(number_in(0, kMaxEnvironmentIntensity))->needs(environment);
     app.add_option("--spp", o.render.spp, "Samples per pixel (anti-aliasing)")->capture_default_str()->check(number_in(1, 4096));
 }
 

@@ -2,10 +2,12 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
 #include "output_files.h"
 #include "heatmap.h"
@@ -30,6 +32,12 @@ struct Options {
     int frames = 1;
     double fps = 24.0;
     std::uint64_t max_triangles = kDefaultMaxTriangles;   // FlattenOptions::max_triangles
+    // What rays leaving the scene see (docs/shading.md, "The environment"): --background replaces the scene's
+    // colour; --environment FILE (.hdr/.exr, equirectangular) replaces it by a map, turned and scaled by these.
+    std::optional<glm::vec3> background;
+    std::string environment;
+    float environment_rotation = 0.0f;    // degrees about +Y
+    float environment_intensity = 1.0f;
     RenderSettings render;
 };
 
@@ -55,6 +63,10 @@ CLI::Option* add_enum(CLI::App& app, const std::string& name, E& value, const st
 // in (lo, hi] when `exclusive_lo`. NaN and Inf are refused. Errors are one line with readable bounds:
 // "--fps: nan is not a finite number", "--width: 0 is out of range: must be at least 1 and at most 16384".
 CLI::Validator number_in(double lo, double hi, bool exclusive_lo = false);
+
+// --background's value: "R,G,B", three finite numbers in [0, kMaxRadiance] (linear radiance). Throws
+// std::invalid_argument with one line otherwise.
+glm::vec3 parse_background(const std::string& text);
 
 // Adds every shared option to `app`, bound to `options`.
 void add_shared_options(CLI::App& app, Options& options);

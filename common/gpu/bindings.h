@@ -11,7 +11,8 @@
 //           (every implementation allows at least 96 SSBO binding points on NVIDIA and 32+ on Mesa, but a single
 //           shader may use at most GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS of them, 16 on NVIDIA)
 // UBO bindings: 0 = the scene block (camera, background, counts); stages from kUboStageFirst.
-// Texture units: 0 = unused (the scene's textures are in SSBO 6); stages from kTextureUnitStageFirst.
+// Texture units: 0 = the --environment map when there is one (the scene's textures are in SSBO 6); stages from
+// kTextureUnitStageFirst.
 #pragma once
 
 namespace rt::gpu {
@@ -60,6 +61,7 @@ constexpr unsigned kUboScene = 0;
 constexpr unsigned kUboStageFirst = 1;
 
 constexpr unsigned kTextureUnitTextures = 0;
+constexpr unsigned kTextureUnitEnvironment = 0;   // the --environment map (environment.glsl), only with RT_ENVIRONMENT
 constexpr unsigned kTextureUnitStageFirst = 1;
 
 }  // namespace rt::gpu

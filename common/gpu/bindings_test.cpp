@@ -271,6 +271,8 @@ TEST(Bindings, SceneUniformBlockHasTheCppLayout) {
     expected["rt_light_count"] = {GLint(offsetof(GpuSceneBlock, light_count)), -1};
     expected["rt_texture_count"] = {GLint(offsetof(GpuSceneBlock, texture_count)), -1};
     expected["rt_scene_pad"] = {GLint(offsetof(GpuSceneBlock, pad)), -1};
+    expected["rt_environment_rotation"] = {GLint(offsetof(GpuSceneBlock, environment_rotation)), -1};
+    expected["rt_environment_pad"] = {GLint(offsetof(GpuSceneBlock, environment_pad)), -1};
     expect_layout(p, GL_UNIFORM_BLOCK, GL_UNIFORM, "SceneBlock", expected);
     // And the whole block is as big as the C++ struct uploaded into it.
     const GLuint block = glGetProgramResourceIndex(p, GL_UNIFORM_BLOCK, "SceneBlock");

@@ -100,6 +100,7 @@ void GpuScene::upload(const Scene& scene) {
     lights_.assign(convert<GpuLight>(scene.lights, [](const Light& l) { return to_gpu(l); }));
 
     upload_textures(scene);
+    environment_.upload(scene.environment);
 
     block_.camera = to_gpu(scene.camera);
     block_.background = scene.background;
@@ -107,6 +108,7 @@ void GpuScene::upload(const Scene& scene) {
     block_.material_count = std::uint32_t(scene.materials.size());
     block_.light_count = std::uint32_t(scene.lights.size());
     block_.texture_count = std::uint32_t(scene.textures.size());
+    block_.environment_rotation = scene.environment ? scene.environment->rotation : glm::vec2(0.0f);
     if (!ubo_) ubo_ = Buffer(sizeof(GpuSceneBlock));
     ubo_.upload(&block_, sizeof block_);
     check_gl("GpuScene::upload");
@@ -164,6 +166,7 @@ void GpuScene::bind() const {
     lights_.bind(kBindingLights);
     textures_.bind(kBindingTextureInfo);
     ubo_.bind(kUboScene, GL_UNIFORM_BUFFER);
+    environment_.bind();   // nothing without an environment
 }
 
 std::size_t GpuScene::bytes() const {

@@ -10,6 +10,7 @@
 
 #include "../scene/scene.h"
 #include "buffer.h"
+#include "environment_texture.h"
 
 namespace rt::gpu {
 
@@ -57,8 +58,10 @@ struct GpuSceneBlock {                   // scene.glsl: uniform SceneBlock (std1
     GpuCamera camera;
     glm::vec3 background; std::uint32_t triangle_count;
     std::uint32_t material_count, light_count, texture_count, pad;
+    glm::vec2 environment_rotation;      // Environment::rotation (cos, sin); read only with RT_ENVIRONMENT
+    glm::vec2 environment_pad;
 };
-static_assert(sizeof(GpuSceneBlock) == 112);
+static_assert(sizeof(GpuSceneBlock) == 128);
 
 GpuCamera to_gpu(const Camera& camera);
 GpuMaterial to_gpu(const Material& material);
@@ -79,6 +82,9 @@ public:
     std::size_t light_count() const { return block_.light_count; }
     std::size_t material_count() const { return block_.material_count; }
     std::size_t texture_count() const { return block_.texture_count; }
+    // Whether the scene has an --environment map (then the passes are compiled with RT_ENVIRONMENT).
+    bool has_environment() const { return environment_.present(); }
+    const EnvironmentTexture& environment() const { return environment_; }
     const GpuSceneBlock& block() const { return block_; }
     // Bytes of GPU memory the scene takes.
     std::size_t bytes() const;
@@ -97,6 +103,7 @@ public:
 private:
     void upload_textures(const Scene& scene);
     Buffer positions_, normals_, uvs_, material_ids_, materials_, lights_, textures_, ubo_;
+    EnvironmentTexture environment_;   // uploaded only when the scene's map changes
     GpuSceneBlock block_{};
 };
 

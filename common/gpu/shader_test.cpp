@@ -135,7 +135,8 @@ TEST(Shader, BindingsMatchBetweenCppAndGlsl) {
         {"RT_BINDING_COMPACT_OUT", kBindingCompactOut},    {"RT_BINDING_HARNESS", kBindingHarness},
         {"RT_BINDING_STAGE_FIRST", kBindingStageFirst},    {"RT_UBO_SCENE", kUboScene},
         {"RT_UBO_STAGE_FIRST", kUboStageFirst},            {"RT_TEXTURE_UNIT_TEXTURES", kTextureUnitTextures},
-        {"RT_TEXTURE_UNIT_STAGE_FIRST", kTextureUnitStageFirst}};
+        {"RT_TEXTURE_UNIT_STAGE_FIRST", kTextureUnitStageFirst},
+        {"RT_TEXTURE_UNIT_ENVIRONMENT", kTextureUnitEnvironment}};
     EXPECT_EQ(glsl, cpp);
 }
 

@@ -111,6 +111,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
                                                                     : "RT_INTERSECT_MOLLER"));
     if (count_tests || settings.record_tests_per_pixel) defines.insert_or_assign("COUNT_TESTS", std::string("1"));
     if (settings.record_tests_per_pixel) defines.insert_or_assign("RECORD_TESTS_PER_PIXEL", std::string("1"));
+    if (scene.has_environment()) defines.insert_or_assign("RT_ENVIRONMENT", std::string("1"));   // environment.glsl
     for (const auto& [k, v] : traversal_.defines) defines.insert_or_assign(k, v);
     std::string key;
     for (const auto& [k, v] : defines) key.append(k).append("=").append(v).append(";");

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,8 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+
+#include "environment.h"
 
 namespace rt {
 
@@ -203,6 +206,9 @@ struct Scene {
     std::vector<Light> lights;
     Camera camera;
     glm::vec3 background{0.0f};
+    // --environment: what rays leaving the scene see instead of the background (environment.h); null = none.
+    // Set by the driver after flatten, the same map for every frame.
+    std::shared_ptr<const Environment> environment;
     Bounds bounds;
     // Documented defaults (docs/shading.md) applied because the asset had none; reported in the stats.
     bool default_camera = false;

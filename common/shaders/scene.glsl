@@ -57,10 +57,11 @@ layout(std430, binding = RT_BINDING_TEXTURE_INFO) readonly buffer SceneTextures 
     uint rt_texture_words[];
 };
 
-layout(std140, binding = RT_UBO_SCENE) uniform SceneBlock {   // 112 bytes (GpuSceneBlock)
+layout(std140, binding = RT_UBO_SCENE) uniform SceneBlock {   // 128 bytes (GpuSceneBlock)
     Camera rt_camera;
     vec3 rt_background; uint rt_triangle_count;
     uint rt_material_count; uint rt_light_count; uint rt_texture_count; uint rt_scene_pad;
+    vec2 rt_environment_rotation; vec2 rt_environment_pad;   // environment.glsl (cos, sin of --environment-rotation)
 };
 
 TextureInfo rt_texture_info(int texture) {

@@ -17,6 +17,7 @@
 #include "../scene/effects.h"
 #include "../scene/scene.h"
 #include "absorption.h"
+#include "environment.h"
 #include "intersect.h"
 #include "normal_map.h"
 #include "offset.h"
@@ -116,7 +117,7 @@ public:
                                                    : HitRecordKind::Reflection;
             log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f);
         }
-        if (!found) return scene_.background;
+        if (!found) return miss_radiance(scene_, glm::vec3(ray.direction));   // environment.h
         SurfacePoint<T> sp = surface_point(scene_, ray, hit);
         const Material& material = scene_.materials[sp.material];
         // Absorption (docs/shading.md): a ray that reaches the back face of an absorbing volume travelled inside it

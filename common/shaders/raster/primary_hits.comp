@@ -18,6 +18,7 @@
 // the rays stay "rasterized" in the stats (docs/gpu.md).
 #include "wavefront/wavefront.glsl"
 #include "scene.glsl"
+#include "environment.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -125,5 +126,5 @@ void main() {
     wf_flush_tests(pixel);
     wf_hits[slot] = e;
     wf_flags[slot] = e.triangle >= 0 ? 1u : 0u;
-    if (e.triangle < 0) wf_accumulate(pixel, rt_background);   // kept with triangle -1 for the hit records
+    if (e.triangle < 0) wf_accumulate(pixel, rt_miss_radiance(ray.direction));   // kept with triangle -1 for the hit records
 }

@@ -1,8 +1,10 @@
 #version 450 core
 // After a trace pass: ray i of the pass with a hit becomes hit slot i (flag 1), so compaction keeps the hits in the
-// order of their rays; a ray that leaves the scene brings the background, weighted by its path weight.
+// order of their rays; a ray that leaves the scene brings the background or the environment in its direction
+// (environment.glsl), weighted by its path weight.
 #include "wavefront.glsl"
 #include "scene.glsl"
+#include "environment.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -25,7 +27,7 @@ void main() {
         wf_hits[i] = e;
         wf_flags[i] = 1u;
     } else {
-        wf_accumulate(r.pixel, r.weight * rt_background);
+        wf_accumulate(r.pixel, r.weight * rt_miss_radiance(r.direction));   // environment.glsl
         wf_flags[i] = 0u;
     }
 }

@@ -1,0 +1,141 @@
+#include "environment_file.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <system_error>
+
+#include <sys/stat.h>
+
+#include "../scene/scene.h"
+#include "../trace/shading.h"
+#include "input_error.h"
+
+#ifndef RT_PORTABLE
+#include <OpenImageIO/imageio.h>
+#endif
+
+namespace rt {
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& file, const std::string& problem) {
+    throw InputError("environment " + file + ": " + problem);
+}
+
+std::string number(double v) {
+    std::ostringstream out;
+    out.precision(6);
+    out << v;
+    return out.str();
+}
+
+// Only .hdr and .exr: the two float formats equirectangular maps come in (an 8-bit PNG holds no radiance).
+void check_extension(const std::string& file) {
+    std::string ext = std::filesystem::path(file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext != ".hdr" && ext != ".exr") refuse(file, "not a .hdr or .exr file");
+}
+
+// A regular file we can reach (a FIFO would block the reader, a folder is no image).
+void check_regular_file(const std::string& file) {
+    struct stat st {};
+    if (::stat(file.c_str(), &st) != 0) {
+        const int error = errno;
+        if (error == ENOENT) refuse(file, "file not found");
+        refuse(file, std::system_category().message(error));
+    }
+    if (S_ISDIR(st.st_mode)) refuse(file, "is a folder, not an image");
+    if (!S_ISREG(st.st_mode)) refuse(file, "is not a regular file (a FIFO, socket or device)");
+}
+
+void check_size(const std::string& file, long long width, long long height) {
+    if (width <= 0 || height <= 0) refuse(file, "has no texels (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    if (width > kMaxEnvironmentSide || height > kMaxEnvironmentSide)
+        refuse(file, std::to_string(width) + "x" + std::to_string(height) + " is too large: at most " +
+                         std::to_string(kMaxEnvironmentSide) + " texels a side");
+    if (std::size_t(width) * std::size_t(height) > kMaxEnvironmentTexels)
+        refuse(file, std::to_string(width) + "x" + std::to_string(height) + " is too large: at most " +
+                         std::to_string(kMaxEnvironmentTexels) + " texels (256 MiB as RGBA float)");
+}
+
+std::string first_line(std::string text) {
+    const std::size_t end = text.find('\n');
+    if (end != std::string::npos) text.resize(end);
+    return text.empty() ? "unknown error" : text;
+}
+
+}  // namespace
+
+Environment make_environment(const std::string& file, int width, int height, int channels,
+                             const std::vector<float>& values, float rotation_degrees, float intensity) {
+    check_size(file, width, height);
+    if (channels != 1 && channels < 3)
+        refuse(file, "has " + std::to_string(channels) + " channels: need 1 (grey) or 3 or more (RGB)");
+    const std::size_t texels = std::size_t(width) * std::size_t(height);
+    if (values.size() < texels * std::size_t(channels)) refuse(file, "has fewer values than its size says");
+    if (!std::isfinite(intensity) || intensity < 0.0f || intensity > kMaxEnvironmentIntensity)
+        refuse(file, "intensity " + number(intensity) + " is not in [0, 1e20]");
+    if (!std::isfinite(rotation_degrees)) refuse(file, "rotation " + number(rotation_degrees) + " is not finite");
+    Environment e;
+    e.file = file;
+    e.width = width;
+    e.height = height;
+    e.intensity = intensity;
+    e.rotation_degrees = rotation_degrees;
+    const float radians = rotation_degrees * (kPi / 180.0f);
+    e.rotation = {std::cos(radians), std::sin(radians)};
+    e.texels.resize(texels);
+    for (std::size_t i = 0; i < texels; ++i) {
+        const float* t = &values[i * std::size_t(channels)];
+        glm::vec4 c(1.0f);
+        for (int k = 0; k < 3; ++k) {
+            const float v = t[channels == 1 ? 0 : k];
+            const char* why = std::isnan(v) ? "NaN" : std::isinf(v) ? "infinite" : v < 0.0f ? "negative" : nullptr;
+            // Beyond kMaxRadiance, in the file or once scaled (in double: the product may overflow a float).
+            if (!why && (v > kMaxRadiance || double(v) * double(intensity) > double(kMaxRadiance)))
+                why = "above 1e20 (kMaxRadiance)";
+            if (why)
+                refuse(file, "texel (" + std::to_string(i % std::size_t(width)) + ", " +
+                                 std::to_string(i / std::size_t(width)) + ") channel " + std::to_string(k) + " is " +
+                                 number(v) + (intensity != 1.0f ? " (times intensity " + number(intensity) + ")" : "") +
+                                 ": " + why + "; radiance must be finite, >= 0 and <= 1e20");
+            c[k] = std::min(v * intensity, kMaxRadiance);   // the float product may round an ulp above
+        }
+        e.texels[i] = c;
+    }
+    return e;
+}
+
+std::shared_ptr<const Environment> load_environment(const std::string& file, float rotation_degrees, float intensity) {
+    check_extension(file);
+    check_regular_file(file);
+#ifdef RT_PORTABLE
+    (void)rotation_degrees;
+    (void)intensity;
+    refuse(file, "this portable build reads no .hdr/.exr (it has no OpenImageIO)");
+#else
+    auto in = OIIO::ImageInput::open(file);
+    if (!in) refuse(file, "not a readable image: " + first_line(OIIO::geterror()));
+    // OIIO tries every reader when the one the extension names fails: a PNG renamed .hdr would open as a PNG.
+    const std::string format = in->format_name();
+    if (format != "hdr" && format != "openexr") refuse(file, "is a " + format + " image, not Radiance HDR or OpenEXR");
+    const OIIO::ImageSpec spec = in->spec();
+    if (spec.deep) refuse(file, "is a deep image");
+    if (spec.depth > 1) refuse(file, "is a volume, not a 2D image");
+    check_size(file, spec.width, spec.height);
+    const int channels = std::min(spec.nchannels, 3);
+    if (spec.nchannels != 1 && spec.nchannels < 3)
+        refuse(file, "has " + std::to_string(spec.nchannels) + " channels: need 1 (grey) or 3 or more (RGB)");
+    std::vector<float> values(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(channels));
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, values.data()))
+        refuse(file, "cannot read its texels: " + first_line(in->geterror()));
+    in->close();
+    return std::make_shared<const Environment>(
+        make_environment(file, spec.width, spec.height, channels, values, rotation_degrees, intensity));
+#endif
+}
+
+}  // namespace rt
