@@ -210,7 +210,9 @@ TEST(Bindings, SceneStructsHaveTheCppLayout) {
                                          {"roughness", offsetof(GpuMaterial, roughness)},
                                          {"transmission", offsetof(GpuMaterial, transmission)},
                                          {"ior", offsetof(GpuMaterial, ior)},
-                                         {"specular", offsetof(GpuMaterial, specular)}}));
+                                         {"specular", offsetof(GpuMaterial, specular)},
+                                         {"alpha_mode", offsetof(GpuMaterial, alpha_mode)},
+                                         {"alpha_cutoff", offsetof(GpuMaterial, alpha_cutoff)}}));
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "SceneLights",
                   array_of<GpuLight>("rt_lights", 0,
                                      {{"color", offsetof(GpuLight, color)},

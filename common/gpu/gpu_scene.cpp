@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../scene/gltf_io.h"
+#include "../trace/opacity.h"
 #include "../trace/shading.h"
 #include "bindings.h"
 #include "storage_limit.h"
@@ -41,6 +42,9 @@ GpuMaterial to_gpu(const Material& m) {
     g.transmission = m.transmission;
     g.ior = m.ior;
     g.specular = m.specular;
+    g.normal_texture = -1;
+    g.alpha_mode = int(m.alpha_mode);
+    g.alpha_cutoff = alpha_test_cutoff(m);   // BLEND's 0.5 already chosen, as opacity.h does
     return g;
 }
 

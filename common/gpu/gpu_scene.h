@@ -28,8 +28,11 @@ struct GpuMaterial {                     // scene.glsl: Material
     glm::vec3 emissive;       std::int32_t base_color_texture;
     glm::vec3 specular_color; float metallic;
     float roughness, transmission, ior, specular;
+    glm::vec3 attenuation;    float thickness;          // KHR_materials_volume (0 here: not read yet)
+    std::int32_t normal_texture; float normal_scale;    // normal maps (-1, 0 here: not read yet)
+    std::int32_t alpha_mode;  float alpha_cutoff;       // AlphaMode; alpha_test_cutoff (common/trace/opacity.h)
 };
-static_assert(sizeof(GpuMaterial) == 64);
+static_assert(sizeof(GpuMaterial) == 96);
 
 struct GpuLight {                        // scene.glsl: Light
     glm::vec3 color;     std::int32_t type;

@@ -25,6 +25,7 @@ ShaderDefines effect_defines(const Effects& effects) {
     if (effects.reflections) d["ENABLE_REFLECTIONS"] = "1";
     if (effects.refractions) d["ENABLE_REFRACTIONS"] = "1";
     if (effects.textures) d["ENABLE_TEXTURES"] = "1";
+    if (effects.cutouts) d["ENABLE_CUTOUTS"] = "1";
     return d;
 }
 

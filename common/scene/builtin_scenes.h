@@ -17,6 +17,7 @@ namespace rt {
 //   far      The whitted scene and its camera translated by (1e4, 1e4, 1e4): a fixed epsilon offset fails there.
 //   mirror_box  A 440-triangle object inside a closed box of six mirrors: reflection-heavy (stage 05's table).
 //   office   A furnished room, 25,424 triangles in 330 meshes, one light: shadow-heavy (stage 05's table).
+//   cutouts  Alpha cut-outs: a fence with holes (MASK) casting a shadow, a mirror reflecting it, a BLEND pane.
 std::vector<std::string> builtin_scene_names();
 
 // Throws SceneError for an unknown name or a bad count.

@@ -12,6 +12,7 @@ std::vector<std::string> Effects::names() const {
     if (reflections) out.push_back("reflections");
     if (refractions) out.push_back("refractions");
     if (textures) out.push_back("textures");
+    if (cutouts) out.push_back("cutouts");
     return out;
 }
 
@@ -25,6 +26,9 @@ bool material_reflects(const Material& m) {
 
 // Only the dielectric part of a material can transmit.
 bool material_transmits(const Material& m) { return m.transmission > 0.0f && m.metallic < 1.0f; }
+
+// docs/shading.md, "Alpha: cut-outs and blending": only MASK and BLEND materials are ever see-through.
+bool material_cuts_out(const Material& m) { return m.alpha_mode != AlphaMode::Opaque; }
 
 // Only materials used by at least one triangle count. Shadows are called for whenever a light shines on geometry.
 // Proving that nothing can occlude is rarely possible: even a lone convex mesh shadows itself where its interpolated
@@ -43,6 +47,7 @@ Effects analyze_effects(const Scene& scene) {
         e.refractions = e.refractions || material_transmits(m);
         const bool textured = m.base_color_texture >= 0 && std::size_t(m.base_color_texture) < scene.textures.size();
         e.textures = e.textures || textured;
+        e.cutouts = e.cutouts || material_cuts_out(m);
     }
     return e;
 }
@@ -61,6 +66,7 @@ bool parse_list(const std::string& spec, Effects& out, std::string* bad_word) {
         else if (word == "reflections") out.reflections = true;
         else if (word == "refractions") out.refractions = true;
         else if (word == "textures") out.textures = true;
+        else if (word == "cutouts") out.cutouts = true;
         else {
             if (bad_word) *bad_word = word;
             return false;
@@ -80,14 +86,14 @@ bool is_valid_effects_spec(const std::string& spec) {
 
 Effects resolve_effects(const std::string& spec, const Scene& scene) {
     if (spec == "auto") return analyze_effects(scene);
-    if (spec == "all") return Effects{true, true, true, true};
+    if (spec == "all") return Effects{true, true, true, true, true};
     if (spec == "none") return Effects{};
     Effects e;
     std::string bad;
     if (!parse_list(spec, e, &bad))
         throw std::invalid_argument("unknown effect '" + bad +
                                     "' in --effects (use auto, all, none or a comma list of shadows, reflections, "
-                                    "refractions, textures)");
+                                    "refractions, textures, cutouts)");
     return e;
 }
 

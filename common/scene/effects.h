@@ -15,6 +15,7 @@ struct Effects {
     bool reflections = false;
     bool refractions = false;
     bool textures = false;
+    bool cutouts = false;   // alphaMode MASK or BLEND: the opacity test where a hit is accepted (common/trace/opacity.h)
     bool operator==(const Effects&) const = default;
     std::vector<std::string> names() const;   // e.g. {"shadows", "reflections"}
 };
@@ -22,7 +23,8 @@ struct Effects {
 // What the scene needs (--effects auto).
 Effects analyze_effects(const Scene& scene);
 
-// Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures.
+// Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures,
+// cutouts.
 // For "auto" returns analyze_effects(scene). Throws std::invalid_argument on an unknown word.
 Effects resolve_effects(const std::string& spec, const Scene& scene);
 bool is_valid_effects_spec(const std::string& spec);
@@ -30,5 +32,6 @@ bool is_valid_effects_spec(const std::string& spec);
 // Material predicates shared by the analysis and the shading code (docs/shading.md).
 bool material_reflects(const Material& m);
 bool material_transmits(const Material& m);
+bool material_cuts_out(const Material& m);   // alphaMode MASK or BLEND
 
 }  // namespace rt

@@ -50,6 +50,10 @@ struct Texture {
     bool nearest = false;              // glTF sampler magFilter NEAREST; else bilinear
 };
 
+// glTF alphaMode (docs/shading.md, "Alpha: cut-outs and blending"): OPAQUE ignores alpha; MASK cuts out where the
+// opacity (base colour alpha times its texture's alpha) is below alpha_cutoff; BLEND is read as a cut-out at 0.5.
+enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
+
 // glTF metallic-roughness material plus the extensions the course reads. Defaults are glTF's defaults.
 // docs/shading.md maps these to Whitted's coefficients.
 struct Material {
@@ -63,6 +67,8 @@ struct Material {
     float ior = 1.5f;                   // KHR_materials_ior
     float specular = 1.0f;              // KHR_materials_specular: specularFactor
     glm::vec3 specular_color{1.0f};     // KHR_materials_specular: specularColorFactor
+    AlphaMode alpha_mode = AlphaMode::Opaque;   // glTF alphaMode
+    float alpha_cutoff = 0.5f;                  // glTF alphaCutoff (MASK only)
 };
 
 enum class LightType : int { Point = 0, Spot = 1, Directional = 2 };

@@ -4,19 +4,22 @@
 //               (the exact hit checks between stages rely on it): triangles are tested in id order and a later one
 //               replaces the hit only when strictly closer.
 //   occluded(): shadow rays only need to know whether anything blocks the light, so stop at the first hit.
+// With cut-outs (Effects::cutouts), a hit where the surface is transparent is no hit (opacity.h).
 #pragma once
 
 #include <vector>
 
 #include "common/scene/scene.h"
 #include "common/trace/intersect.h"
+#include "common/trace/opacity.h"
 
 namespace rt {
 
 template <class T>
 class BruteForceTracer {
 public:
-    BruteForceTracer(const Scene& scene, IntersectMethod method) : method_(method) {
+    BruteForceTracer(const Scene& scene, IntersectMethod method, bool cutouts = false)
+        : method_(method), cutouts_(cutouts ? &scene : nullptr) {
         vertices_.reserve(scene.positions.size());
         for (const glm::vec3& p : scene.positions) vertices_.emplace_back(p);   // converted to T once
     }
@@ -32,13 +35,15 @@ public:
             const WatertightRay<T> w(r.direction);
             for (std::size_t i = 0; i < n; ++i) {
                 T t, u, v;
-                if (intersect_watertight(r, w, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v))
+                if (intersect_watertight(r, w, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v) &&
+                    opaque(i, u, v))
                     record(r, hit, i, t, u, v);
             }
         } else {
             for (std::size_t i = 0; i < n; ++i) {
                 T t, u, v;
-                if (intersect_moller(r, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v))
+                if (intersect_moller(r, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v) &&
+                    opaque(i, u, v))
                     record(r, hit, i, t, u, v);
             }
         }
@@ -58,7 +63,7 @@ public:
             const bool hit = method_ == IntersectMethod::Watertight
                                  ? intersect_watertight(ray, w, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v)
                                  : intersect_moller(ray, vertices_[3 * i], vertices_[3 * i + 1], vertices_[3 * i + 2], t, u, v);
-            if (hit) {
+            if (hit && opaque(i, u, v)) {
                 counters.intersection_tests += i + 1;   // early exit: count only the tests made
                 return true;
             }
@@ -71,6 +76,8 @@ public:
     }
 
 private:
+    bool opaque(std::size_t i, T u, T v) const { return !cutouts_ || surface_opaque(*cutouts_, i, u, v); }
+
     static void record(Ray<T>& r, Hit<T>& hit, std::size_t i, T t, T u, T v) {
         // The watertight test compares t with tmax before dividing, so rounding may let an equal t through: keep the
         // earlier (lower id) triangle then.
@@ -83,6 +90,7 @@ private:
     }
 
     IntersectMethod method_;
+    const Scene* cutouts_;   // the scene whose opacity the hits pass (opacity.h), or null: every hit counts
     std::vector<Vec3<T>> vertices_;
 };
 
