@@ -211,6 +211,10 @@ TEST(Bindings, SceneStructsHaveTheCppLayout) {
                                          {"transmission", offsetof(GpuMaterial, transmission)},
                                          {"ior", offsetof(GpuMaterial, ior)},
                                          {"specular", offsetof(GpuMaterial, specular)},
+                                         {"attenuation", offsetof(GpuMaterial, attenuation)},
+                                         {"thickness", offsetof(GpuMaterial, thickness)},
+                                         {"normal_texture", offsetof(GpuMaterial, normal_texture)},
+                                         {"normal_scale", offsetof(GpuMaterial, normal_scale)},
                                          {"alpha_mode", offsetof(GpuMaterial, alpha_mode)},
                                          {"alpha_cutoff", offsetof(GpuMaterial, alpha_cutoff)}}));
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "SceneLights",
