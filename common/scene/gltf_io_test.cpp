@@ -120,6 +120,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
         EXPECT_EQ(x.ior, y.ior);
         EXPECT_EQ(x.specular, y.specular);
         EXPECT_EQ(x.specular_color, y.specular_color);
+        EXPECT_EQ(x.alpha_mode, y.alpha_mode);
+        EXPECT_EQ(x.alpha_cutoff, y.alpha_cutoff);
     }
     ASSERT_EQ(a.lights.size(), b.lights.size());
     for (std::size_t i = 0; i < a.lights.size(); ++i) {
