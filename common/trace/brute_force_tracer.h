@@ -26,8 +26,9 @@ public:
 
     bool closest(const Ray<T>& ray, Hit<T>& hit, RayCounters& counters) const {
         // BEGIN EXERCISE 01.closest_hit: test the ray against every triangle (vertices_[3i], [3i + 1], [3i + 2]) with
-        // the chosen method (intersect_watertight or intersect_moller); pass each hit to record(), which keeps it only
-        // when strictly closer and shrinks r.tmax. Add the tests made to counters.intersection_tests.
+        // the chosen method (intersect_watertight or intersect_moller); pass each hit where opaque(i, u, v) (alpha
+        // cut-outs) to record(), which keeps it only when strictly closer and shrinks r.tmax. Add the tests made to
+        // counters.intersection_tests.
         Ray<T> r = ray;
         const std::size_t n = vertices_.size() / 3;
         counters.intersection_tests += n;
@@ -54,8 +55,8 @@ public:
     }
 
     bool occluded(const Ray<T>& ray, RayCounters& counters) const {
-        // BEGIN EXERCISE 01.any_hit: a shadow ray only needs to know whether some triangle is hit with t < tmax: stop
-        // at the first one. Count the tests actually made.
+        // BEGIN EXERCISE 01.any_hit: a shadow ray only needs to know whether some triangle is hit with t < tmax
+        // (where opaque(i, u, v)): stop at the first one. Count the tests actually made.
         const std::size_t n = vertices_.size() / 3;
         const WatertightRay<T> w(ray.direction);
         for (std::size_t i = 0; i < n; ++i) {
