@@ -21,7 +21,7 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
     FrameResult result;
     result.image = Image(settings.width, settings.height);
     const auto t0 = std::chrono::steady_clock::now();
-    const BruteForceTracer<T> tracer(scene, settings.intersect);
+    const BruteForceTracer<T> tracer(scene, settings.intersect, settings.effects.cutouts);
     const auto t1 = std::chrono::steady_clock::now();
 
     WhittedSettings ws;

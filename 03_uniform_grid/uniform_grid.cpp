@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/trace/opacity.h"
+
 namespace rt {
 
 glm::ivec3 choose_resolution(const Bounds& bounds, std::size_t n, float lambda) {
@@ -185,12 +187,14 @@ struct TriangleTest {
     const std::vector<glm::vec3>& positions;
     IntersectMethod method;
     WatertightRay<float> w;
+    const Scene* cutouts = nullptr;   // a transparent hit is no hit (opacity.h)
     std::size_t tests = 0;
     bool operator()(const Ray<float>& ray, std::uint32_t t, float& th, float& u, float& v) {
         ++tests;
         const glm::vec3 &a = positions[3 * t], &b = positions[3 * t + 1], &c = positions[3 * t + 2];
-        return method == IntersectMethod::Watertight ? intersect_watertight(ray, w, a, b, c, th, u, v)
-                                                     : intersect_moller(ray, a, b, c, th, u, v);
+        const bool hit = method == IntersectMethod::Watertight ? intersect_watertight(ray, w, a, b, c, th, u, v)
+                                                               : intersect_moller(ray, a, b, c, th, u, v);
+        return hit && (!cutouts || surface_opaque(*cutouts, t, u, v));
     }
 };
 
@@ -207,9 +211,9 @@ void fold_hit(TriangleTest& test, Ray<float>& ray, std::uint32_t t, Hit<float>& 
 }  // namespace
 
 Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& positions, const Ray<float>& ray,
-                            IntersectMethod method, GridTraceCount* count) {
+                            IntersectMethod method, GridTraceCount* count, const Scene* cutouts) {
     const GridParams& g = grid.params;
-    TriangleTest test{positions, method, WatertightRay<float>(ray.direction)};
+    TriangleTest test{positions, method, WatertightRay<float>(ray.direction), cutouts};
     Hit<float> best;
     float second = std::numeric_limits<float>::infinity();   // the smallest t of another triangle, > best.t
     GridStep ring[kGridTieCells];                             // the last cells visited

@@ -93,7 +93,9 @@ struct GridTraceCount {
     std::size_t tests = 0;
     bool bound_reached = false;
 };
+// With `cutouts` (a scene with MASK or BLEND materials), a hit where the surface is transparent is no hit
+// (common/trace/opacity.h), in both phases; the result is brute force's with the same test.
 Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& positions, const Ray<float>& ray,
-                            IntersectMethod method, GridTraceCount* count = nullptr);
+                            IntersectMethod method, GridTraceCount* count = nullptr, const Scene* cutouts = nullptr);
 
 }  // namespace rt

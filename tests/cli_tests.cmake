@@ -15,6 +15,7 @@ function(rt_add_cli_tests stage)
       "unknown_builtin|--scene|builtin:nosuchscene|--out|@DIR@/unknown_builtin.png"
       "unknown_option|--no-such-option|--out|@DIR@/unknown_option.png"
       "bad_effect|--effects|shadows,glitter|--out|@DIR@/bad_effect.png"
+      "bad_effect_cutout|--effects|cutout|--out|@DIR@/bad_effect_cutout.png"
       "bad_image_type|--out|@DIR@/bad_image_type.bmp"
       "out_folder_missing|--out|@DIR@/no/such/folder/x.png"
       "camera_out_of_range|--camera|7|--out|@DIR@/camera_out_of_range.png")

@@ -4,6 +4,7 @@
 // trace_any from its shadow pass. Shader path: "03_uniform_grid/grid.glsl". C++ twin: walk_grid in uniform_grid.cpp.
 #include "wavefront/wavefront.glsl"
 #include "grid_walk.glsl"
+#include "opacity.glsl"
 
 
 #if defined(GRID_STATS) && defined(COUNT_TESTS)   // compiled out without test counting (timing runs)
@@ -32,10 +33,11 @@ bool grid_intersect(Ray ray, WatertightRay w, uint i, out float t, out float u, 
     vec3 a, b, c;
     grid_load_triangle(i, a, b, c);
 #if RT_INTERSECT_METHOD == RT_INTERSECT_WATERTIGHT
-    return intersect_watertight(ray, w, a, b, c, t, u, v);
+    const bool hit = intersect_watertight(ray, w, a, b, c, t, u, v);
 #else
-    return intersect_moller(ray, a, b, c, t, u, v);
+    const bool hit = intersect_moller(ray, a, b, c, t, u, v);
 #endif
+    return hit && cutout_opaque(i, u, v);   // a transparent hit is no hit (opacity.glsl): both phases stay exact
 }
 
 // Closest hit, exactly brute force's (common/brute_force.glsl: triangles in id order, each hit shrinking tmax for

@@ -7,6 +7,9 @@
 //      (one per round), which gives exactly brute force's hit: hits farther than RH_TIE_RANGE beyond the closest
 //      never decide anything there (the watertight test's tmax check can reject a closer hit only within a few ulps
 //      of the kept one; stage 03's grid.glsl has the same two phases).
+// With cut-outs, step 1 lists only opaque hits (rh_leaf.comp applies opacity.glsl). Step 2 needs no opacity test of
+// its own: it tests only listed triangles again, and a test gives the same u, v whatever tmax lets it through, so a
+// listed hit stays opaque; brute force over the opaque hits is what the fold replays.
 #define RH_TIE_RANGE 1e-5
 
 struct RhRayState {

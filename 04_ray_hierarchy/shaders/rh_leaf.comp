@@ -6,6 +6,7 @@
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 #include "rh_pairs.glsl"
+#include "opacity.glsl"
 #ifndef RH_SHADOW
 #include "rh_closest.glsl"
 #endif
@@ -30,7 +31,7 @@ void main() {
     vec3 a, b, c;
     rh_load_triangle(p.y, a, b, c);
     float t, u, v;
-    const bool hit = intersect_triangle(RT_INTERSECT_METHOD, wf_ray(r), a, b, c, t, u, v);
+    const bool hit = intersect_triangle(RT_INTERSECT_METHOD, wf_ray(r), a, b, c, t, u, v) && cutout_opaque(p.y, u, v);
 #ifdef RH_SHADOW
     if (hit) rh_occluded[slot] = 1u;
 #else

@@ -8,6 +8,7 @@
 
 #include "../scene/gltf_io.h"
 #include "../trace/absorption.h"
+#include "../trace/opacity.h"
 #include "../trace/shading.h"
 #include "../trace/texture_transform.h"
 #include "bindings.h"
@@ -47,8 +48,8 @@ GpuMaterial to_gpu(const Material& m) {
     g.thickness = m.thickness;
     g.normal_texture = m.normal_texture;
     g.normal_scale = m.normal_scale;
-    g.alpha_mode = 0;
-    g.alpha_cutoff = 0.0f;
+    g.alpha_mode = int(m.alpha_mode);
+    g.alpha_cutoff = alpha_test_cutoff(m);   // BLEND's 0.5 already chosen, as opacity.h does
     g.base_color_uv_matrix = uv_matrix(m.base_color_transform);
     g.normal_uv_matrix = uv_matrix(m.normal_transform);
     g.base_color_uv_offset = m.base_color_transform.offset;

@@ -30,7 +30,7 @@ struct GpuMaterial {                     // scene.glsl: Material
     glm::vec3 specular_color; float metallic;
     float roughness, transmission, ior, specular;
     glm::vec3 attenuation;    float thickness;          // attenuation = sigma_a (rt::absorption_coefficient)
-    std::int32_t normal_texture; float normal_scale; std::int32_t alpha_mode; float alpha_cutoff;
+    std::int32_t normal_texture; float normal_scale; std::int32_t alpha_mode; float alpha_cutoff;   // alpha: AlphaMode, alpha_test_cutoff (opacity.h)
     std::int32_t metallic_roughness_texture, emissive_texture, transmission_texture, material_pad1;
     // KHR_texture_transform: rt::uv_matrix (a, b, c, d) and the offsets of the base colour and normal textures.
     glm::vec4 base_color_uv_matrix;

@@ -27,6 +27,7 @@ ShaderDefines effect_defines(const Effects& effects) {
     if (effects.textures) d["ENABLE_TEXTURES"] = "1";
     if (effects.absorption) d["ENABLE_ABSORPTION"] = "1";
     if (effects.normal_maps) d["ENABLE_NORMAL_MAPS"] = "1";
+    if (effects.cutouts) d["ENABLE_CUTOUTS"] = "1";
     return d;
 }
 

@@ -173,11 +173,13 @@ void Wavefront::compile_programs() {
     trace_ = secondary_ && !traversal_.trace_batch ? compile("trace.comp", true) : Program();
     trace_collect_ = secondary_ ? compile("trace_collect.comp", false) : Program();
     camera_ = Program();   // compiled on first use (stages that trace primary rays)
+    deferred_rays_ = Program();   // compiled on first use (stage 02 with cut-outs)
 }
 
 std::vector<std::string> Wavefront::programs() const {
     std::vector<std::string> names;
-    for (const Program* p : {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_})
+    for (const Program* p :
+         {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_, &deferred_rays_})
         if (*p) names.push_back(p->name());
     return names;
 }
@@ -255,9 +257,17 @@ void Wavefront::for_each_tile_batch(F&& run_batch) {
 }
 
 void Wavefront::shade_sample(const Program& primary_pass) {
+    // Cut-outs: the primary pass defers the camera rays of pixels whose G-buffer candidate may be transparent (a
+    // MASK or BLEND material) to its ray slots; they are traced with the traversal after the rasterized hits.
+    const bool defer = defines_.count("ENABLE_CUTOUTS") > 0;
+    if (defer) prepare_camera_tracing();
     for_each_tile_batch([&](std::size_t first_tile, std::size_t slots, unsigned pixel_first) {
         hit_slots_.reserve(slots * sizeof(WavefrontHit));
         flags_.reserve(slots * sizeof(std::uint32_t));
+        if (defer) {
+            ray_slots_.reserve(slots * sizeof(WavefrontRay));
+            ray_slots_.bind(kBindingWavefrontRaySlots);
+        }
         set_uniforms(primary_pass);
         primary_pass.set("wf_tile_first", unsigned(first_tile));
         primary_pass.set("wf_pixel_first", pixel_first);
@@ -272,15 +282,17 @@ void Wavefront::shade_sample(const Program& primary_pass) {
         check_gl("wavefront: primary hits");
         if (settings_.record_hits) record_primary_slots(slots);
         const std::size_t hits = compact(hit_slots_, slots, sizeof(WavefrontHit) / 4, hits_);
+        // The deferred rays go to queue(0) (stage 02 has no other use for it) before shading overwrites the ray
+        // slots and flags; they are traced once the rasterized hits and all their descendants are done.
+        const std::size_t deferred = defer ? gather_deferred_rays(slots) : 0;
         if (hits > 0) process_hits(hits, 0);
+        if (deferred > 0) run_rays(queue(0), deferred, 0);
     });
 }
 
-void Wavefront::trace_camera_sample(glm::vec2 offset) {
-    if (!camera_) {
-        camera_ = compile("camera_rays.comp", false);
-        set_uniforms(camera_);
-    }
+// Trace programs for camera rays: the stage's trace pass may not be compiled (a scene without reflections and
+// refractions), but camera rays need it.
+void Wavefront::prepare_camera_tracing() {
     if (!trace_ && !traversal_.trace_batch) {
         trace_ = compile("trace.comp", true);
         set_uniforms(trace_);
@@ -289,6 +301,27 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
         trace_collect_ = compile("trace_collect.comp", false);
         set_uniforms(trace_collect_);
     }
+}
+
+// Flags the primary pass' ray slots that hold a deferred camera ray and packs them into queue(0); returns how many.
+std::size_t Wavefront::gather_deferred_rays(std::size_t slots) {
+    if (!deferred_rays_) deferred_rays_ = Program::compute("raster/deferred_rays.comp", defines_);
+    ray_slots_.bind(kBindingWavefrontRaySlots);
+    flags_.bind(kBindingWavefrontFlags);
+    deferred_rays_.set("wf_input_count", unsigned(slots));
+    deferred_rays_.dispatch_threads(slots);
+    record_pass("deferred_rays");
+    pass_barrier();
+    check_gl("wavefront: deferred rays");
+    return compact(ray_slots_, slots, sizeof(WavefrontRay) / 4, queue(0));
+}
+
+void Wavefront::trace_camera_sample(glm::vec2 offset) {
+    if (!camera_) {
+        camera_ = compile("camera_rays.comp", false);
+        set_uniforms(camera_);
+    }
+    prepare_camera_tracing();
     camera_.set("wf_sample_offset", offset);
     for_each_tile_batch([&](std::size_t first_tile, std::size_t slots, unsigned) {
         ray_slots_.reserve(slots * sizeof(WavefrontRay));

@@ -115,7 +115,9 @@ public:
     // the stage, compiled with defines(); the stage binds its own inputs first) runs one thread per slot of the
     // batch: it writes wf_hits[slot] and wf_flags[slot] for pixel wf_tile_pixel(wf_tile_first * 64 + slot) and adds
     // the background of empty pixels with wf_accumulate() (raster/primary_hits.comp). Then the hits are shaded and
-    // every bounce traced.
+    // every bounce traced. With cut-outs (ENABLE_CUTOUTS) the pass may instead defer a pixel's camera ray to
+    // wf_ray_slots[slot] (pixel WF_NO_PIXEL in every slot it does not defer): those are traced as in
+    // trace_camera_sample after the batch's hits.
     void shade_sample(const Program& primary_pass);
 
     // One sample with traced primary rays (stages 03-05): camera rays through `offset` in each pixel, traced with
@@ -184,6 +186,8 @@ private:
     void record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow);
     void resolve(std::size_t band);
     void bind_traversal() const;
+    void prepare_camera_tracing();
+    std::size_t gather_deferred_rays(std::size_t slots);   // stage 02 with cut-outs (shade_sample)
 
     Traversal traversal_;
     RenderSettings settings_;
@@ -196,6 +200,7 @@ private:
     ShaderDefines defines_;
     std::string compiled_key_;
     Program shade_, shadow_, trace_, shadow_collect_, trace_collect_, resolve_, camera_, compact_;
+    Program deferred_rays_;   // raster/deferred_rays.comp (cut-outs in shade_sample)
     Scan scan_;
     // Shared by all depths: the hits being shaded, the output slots of a pass with their flags and scan, results.
     Buffer hits_, hit_slots_, ray_slots_, flags_, offsets_, counts_, results_;

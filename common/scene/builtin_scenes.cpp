@@ -510,6 +510,63 @@ SceneAsset material_maps() {
     return a;
 }
 
+// Alpha cut-outs (docs/shading.md, "Alpha: cut-outs and blending"): a green fence quad whose texture has round holes
+// (alphaMode MASK, bilinear alpha, cutoff 0.5) in front of a lit wall, so its shadow shows the holes; a mirror on the
+// right that reflects the fence, holes and all; a BLEND pane at the left with see-through stripes (alpha 0.3 in a
+// nearest texture: read as cut out, below 0.5).
+SceneAsset cutouts() {
+    SceneAsset a;
+    a.name = "cutouts";
+    a.background = glm::vec3(0.25f, 0.3f, 0.4f);
+
+    Texture holes;   // 16 x 16, a round hole of radius 1.5 texels in each 4 x 4 block
+    holes.name = "fence holes";
+    holes.width = holes.height = 16;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const float dx = float(x % 4) - 1.5f, dy = float(y % 4) - 1.5f;
+            const std::uint8_t alpha = dx * dx + dy * dy < 1.5f * 1.5f ? 0 : 255;
+            const std::uint8_t texel[4] = {70, 170, 60, alpha};   // sRGB green
+            holes.rgba8.insert(holes.rgba8.end(), texel, texel + 4);
+        }
+    a.textures.push_back(holes);
+    Texture stripes;   // 4 x 1, nearest: two opaque texels, two at alpha 80 / 255 ~ 0.31
+    stripes.name = "pane stripes";
+    stripes.width = 4;
+    stripes.height = 1;
+    stripes.nearest = true;
+    for (int x = 0; x < 4; ++x) {
+        const std::uint8_t texel[4] = {90, 140, 230, std::uint8_t(x < 2 ? 255 : 80)};
+        stripes.rgba8.insert(stripes.rgba8.end(), texel, texel + 4);
+    }
+    a.textures.push_back(stripes);
+
+    Material fence = diffuse("fence", glm::vec3(1.0f));
+    fence.base_color_texture = 0;
+    fence.alpha_mode = AlphaMode::Mask;
+    fence.alpha_cutoff = 0.5f;
+    Material pane = diffuse("pane", glm::vec3(1.0f));
+    pane.base_color_texture = 1;
+    pane.alpha_mode = AlphaMode::Blend;
+    const int fence_m = add_material(a, fence);
+    const int pane_m = add_material(a, pane);
+    const int wall_m = add_material(a, diffuse("wall", glm::vec3(0.8f, 0.78f, 0.72f)));
+    const int floor_m = add_material(a, diffuse("floor", glm::vec3(0.45f, 0.42f, 0.38f)));
+    const int mirror_m = add_material(a, mirror("mirror", glm::vec3(0.9f)));
+
+    add_mesh_node(a, "floor", make_quad({0, 0, 0.5f}, {5, 0, 0}, {0, 0, -3}, 1.0f, floor_m));
+    add_mesh_node(a, "wall", make_quad({0, 2, -2.5f}, {5, 0, 0}, {0, 2, 0}, 1.0f, wall_m));
+    // 1.8 m x 1.8 m, the texture twice across: 8 x 8 holes of about 0.11 m.
+    add_mesh_node(a, "fence", make_quad({-0.3f, 1.1f, -0.6f}, {0.9f, 0, 0}, {0, 0.9f, 0}, 2.0f, fence_m));
+    add_mesh_node(a, "pane", make_quad({-1.6f, 0.8f, 1.0f}, {0.45f, 0, 0.2f}, {0, 0.7f, 0}, 2.0f, pane_m));
+    // Facing (-0.92, 0, 0.39): the camera sees the fence in it.
+    add_mesh_node(a, "mirror", make_quad({2.0f, 1.1f, 0.2f}, {0.23f, 0, 0.55f}, {0, 0.8f, 0}, 1.0f, mirror_m));
+
+    add_camera(a, {0.0f, 1.5f, 4.5f}, {0.1f, 1.0f, -1.0f}, 50.0f);
+    add_point_light(a, {-0.8f, 3.0f, 2.5f}, 60.0f);
+    return a;
+}
+
 int parse_sphere_count(const std::string& text) {
     if (text.empty() || text.size() > 5) throw SceneError("bad sphere count '" + text + "' (expected 1 to 10000)");
     int n = 0;
@@ -525,7 +582,7 @@ int parse_sphere_count(const std::string& text) {
 
 std::vector<std::string> builtin_scene_names() {
     return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office", "material_maps",
-            "absorption", "normal_map"};
+            "absorption", "normal_map", "cutouts"};
 }
 
 SceneAsset make_builtin_scene(const std::string& name) {
@@ -539,6 +596,7 @@ SceneAsset make_builtin_scene(const std::string& name) {
     if (name == "material_maps") return material_maps();
     if (name == "absorption") return absorption_scene();
     if (name == "normal_map") return normal_map_scene();
+    if (name == "cutouts") return cutouts();
     if (name == "spheres") return spheres(64);
     if (name.rfind("spheres:", 0) == 0) return spheres(parse_sphere_count(name.substr(8)));
     std::string known;

@@ -19,6 +19,7 @@ namespace rt {
 //   office   A furnished room, 25,424 triangles in 330 meshes, one light: shadow-heavy (stage 05's table).
 //   material_maps  A floor whose metallic-roughness texture alternates mirror metal and rough plastic, and a panel
 //            with an emissive texture: textures that scale material factors.
+//   cutouts  Alpha cut-outs: a fence with holes (MASK) casting a shadow, a mirror reflecting it, a BLEND pane.
 std::vector<std::string> builtin_scene_names();
 
 // Throws SceneError for an unknown name or a bad count.

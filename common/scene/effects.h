@@ -17,6 +17,7 @@ struct Effects {
     bool textures = false;
     bool absorption = false;    // KHR_materials_volume: Beer-Lambert inside transmitting volumes
     bool normal_maps = false;   // normal textures perturb the shading normal
+    bool cutouts = false;       // alphaMode MASK or BLEND: the opacity test where a hit is accepted (common/trace/opacity.h)
     bool operator==(const Effects&) const = default;
     std::vector<std::string> names() const;   // e.g. {"shadows", "reflections"}
 };
@@ -25,7 +26,7 @@ struct Effects {
 Effects analyze_effects(const Scene& scene);
 
 // Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures,
-// absorption,normal_maps.
+// absorption,normal_maps,cutouts.
 // For "auto" returns analyze_effects(scene). Throws std::invalid_argument on an unknown word.
 Effects resolve_effects(const std::string& spec, const Scene& scene);
 bool is_valid_effects_spec(const std::string& spec);
@@ -39,5 +40,6 @@ bool material_transmits(const Material& m, const std::vector<Texture>* textures 
 // "Absorption"); and one with a normal texture (valid index into `texture_count` textures).
 bool material_absorbs(const Material& m, const std::vector<Texture>* textures = nullptr);
 bool material_has_normal_map(const Material& m, std::size_t texture_count);
+bool material_cuts_out(const Material& m);   // alphaMode MASK or BLEND
 
 }  // namespace rt

@@ -297,6 +297,21 @@ TEST_F(GltfHostile, NegativeAndOutOfRangeValuesAreClampedWithAWarning) {
     EXPECT_NE(warnings.find("light 0: intensity -5"), std::string::npos) << warnings;
 }
 
+TEST_F(GltfHostile, AlphaCutoffBelowZeroIsClampedBeyondAFloatRefusedAndAnUnknownAlphaModeIsOpaque) {
+    json doc = triangle();
+    doc["meshes"][0]["primitives"][0]["material"] = 0;
+    doc["materials"] = {{{"alphaMode", "MASK"}, {"alphaCutoff", -0.25}}, {{"alphaMode", "SOMETIMES"}}};
+    std::string warnings;
+    const SceneAsset asset = load_gltf(write(doc), &warnings);
+    EXPECT_EQ(asset.materials[0].alpha_mode, AlphaMode::Mask);
+    EXPECT_EQ(asset.materials[0].alpha_cutoff, 0.0f);
+    EXPECT_NE(warnings.find("material 0: alphaCutoff -0.25 is outside"), std::string::npos) << warnings;
+    EXPECT_EQ(asset.materials[1].alpha_mode, AlphaMode::Opaque);
+    EXPECT_NE(warnings.find("material 1: alphaMode 'SOMETIMES' is unknown"), std::string::npos) << warnings;
+    doc["materials"][0]["alphaCutoff"] = 1e39;
+    expect_refused(doc, "material 0: alphaCutoff is 1e+39, which does not fit a float");
+}
+
 }  // namespace
 
 // Texture references inside material extensions are JSON numbers tinygltf does not check: a fraction, a huge or a

@@ -131,6 +131,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
         EXPECT_EQ(x.normal_scale, y.normal_scale);
         EXPECT_EQ(x.base_color_transform, y.base_color_transform);
         EXPECT_EQ(x.normal_transform, y.normal_transform);
+        EXPECT_EQ(x.alpha_mode, y.alpha_mode);
+        EXPECT_EQ(x.alpha_cutoff, y.alpha_cutoff);
     }
     EXPECT_EQ(a.tangents, b.tangents);
     ASSERT_EQ(a.lights.size(), b.lights.size());

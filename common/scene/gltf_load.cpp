@@ -382,6 +382,10 @@ struct Loader {
         out.specular = value(number(specular, "specularFactor", 1.0), name + ": specularFactor", 0.0f, 1.0f);
         out.specular_color = values<3>(numbers(specular, "specularColorFactor", {}), name + ": specularColorFactor",
                                        glm::vec3(1.0f), 0.0f);
+        if (m.alphaMode == "MASK") out.alpha_mode = AlphaMode::Mask;
+        else if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::Blend;
+        else if (m.alphaMode != "OPAQUE") warn(name + ": alphaMode '" + m.alphaMode + "' is unknown; OPAQUE used");
+        out.alpha_cutoff = value(m.alphaCutoff, name + ": alphaCutoff", 0.0f);
         return out;
     }
 

@@ -132,6 +132,8 @@ struct Writer {
         } else {
             out.emissiveFactor = {m.emissive.r, m.emissive.g, m.emissive.b};
         }
+        if (m.alpha_mode != AlphaMode::Opaque) out.alphaMode = m.alpha_mode == AlphaMode::Mask ? "MASK" : "BLEND";
+        out.alphaCutoff = m.alpha_cutoff;
         if (m.transmission != 0.0f) {
             tinygltf::Value::Object transmission{{"transmissionFactor", tinygltf::Value(double(m.transmission))}};
             if (m.transmission_texture >= 0)

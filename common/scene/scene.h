@@ -62,6 +62,9 @@ struct TextureTransform {
     bool is_identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
     bool operator==(const TextureTransform&) const = default;
 };
+// glTF alphaMode (docs/shading.md, "Alpha: cut-outs and blending"): OPAQUE ignores alpha; MASK cuts out where the
+// opacity (base colour alpha times its texture's alpha) is below alpha_cutoff; BLEND is read as a cut-out at 0.5.
+enum class AlphaMode : int { Opaque = 0, Mask = 1, Blend = 2 };
 
 // glTF metallic-roughness material plus the extensions the course reads. Defaults are glTF's defaults.
 // docs/shading.md maps these to Whitted's coefficients.
@@ -90,6 +93,8 @@ struct Material {
     // KHR_texture_transform of the two textures (docs/shading.md, "Texture transform").
     TextureTransform base_color_transform;
     TextureTransform normal_transform;
+    AlphaMode alpha_mode = AlphaMode::Opaque;   // glTF alphaMode
+    float alpha_cutoff = 0.5f;                  // glTF alphaCutoff (MASK only)
 };
 
 enum class LightType : int { Point = 0, Spot = 1, Directional = 2 };

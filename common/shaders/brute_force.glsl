@@ -4,6 +4,7 @@
 // stages 03-05 plug in a faster traversal instead. Shader path: "common/brute_force.glsl".
 #include "wavefront/wavefront.glsl"
 #include "scene.glsl"
+#include "opacity.glsl"
 
 bool intersect_scene_triangle(Ray ray, WatertightRay w, uint i, out float t, out float u, out float v) {
     vec3 a, b, c;
@@ -25,7 +26,7 @@ void closest_hit_among(Ray ray, WatertightRay w, uint first, uint end, inout Hit
     if (hit.triangle >= 0) ray.tmax = hit.t;
     for (uint i = first; i < end; ++i) {
         float t, u, v;
-        if (intersect_scene_triangle(ray, w, i, t, u, v) && t < hit.t) {
+        if (intersect_scene_triangle(ray, w, i, t, u, v) && t < hit.t && cutout_opaque(i, u, v)) {
             ray.tmax = t;
             hit.t = t;
             hit.u = u;
@@ -41,7 +42,7 @@ void closest_hit_among(Ray ray, WatertightRay w, uint first, uint end, inout Hit
 bool any_hit_among(Ray ray, WatertightRay w, uint first, uint end) {
     for (uint i = first; i < end; ++i) {
         float t, u, v;
-        if (intersect_scene_triangle(ray, w, i, t, u, v)) {
+        if (intersect_scene_triangle(ray, w, i, t, u, v) && cutout_opaque(i, u, v)) {
             wf_count_tests(i + 1u - first);
             return true;
         }

@@ -14,13 +14,17 @@
 #define RT_LIGHT_SPOT 1
 #define RT_LIGHT_DIRECTIONAL 2
 
+#define RT_ALPHA_OPAQUE 0
+#define RT_ALPHA_MASK 1
+#define RT_ALPHA_BLEND 2
+
 struct Material {                    // 160 bytes, std430 (GpuMaterial)
     vec4 base_color;
     vec3 emissive;       int base_color_texture;   // textures: -1 = none
     vec3 specular_color; float metallic;
     float roughness; float transmission; float ior; float specular;
     vec3 attenuation;    float thickness;          // attenuation = sigma_a per channel (0: no absorption)
-    int normal_texture;  float normal_scale;  int alpha_mode;  float alpha_cutoff;
+    int normal_texture;  float normal_scale;  int alpha_mode;  float alpha_cutoff;   // alpha: RT_ALPHA_*, the alpha test's threshold
     int metallic_roughness_texture; int emissive_texture; int transmission_texture; int material_pad1;
     vec4 base_color_uv_matrix;                     // KHR_texture_transform (rt::uv_matrix): a, b, c, d
     vec4 normal_uv_matrix;
@@ -39,14 +43,19 @@ struct TextureInfo {                 // 16 bytes (GpuTextureInfo): texel (x, y) 
     int width; int height; int nearest; uint first;
 };
 
-// Triangle i uses entries 3i, 3i+1, 3i+2.
+// Triangle i uses entries 3i, 3i+1, 3i+2. RT_SCENE_MATERIALS_ONLY (opacity.glsl in a traversal's pass, which must
+// stay within 16 storage blocks) leaves out the positions, normals and lights and what reads them.
+#ifndef RT_SCENE_MATERIALS_ONLY
 layout(std430, binding = RT_BINDING_POSITIONS) RT_SCENE_ACCESS buffer ScenePositions { vec4 rt_positions[]; };
 // With normal maps, vertex i's tangent (xyz, w = handedness) is rt_normals[3 * rt_triangle_count + i].
 layout(std430, binding = RT_BINDING_NORMALS) RT_SCENE_ACCESS buffer SceneNormals { vec4 rt_normals[]; };
+#endif
 layout(std430, binding = RT_BINDING_UVS) RT_SCENE_ACCESS buffer SceneUvs { vec2 rt_uvs[]; };
 layout(std430, binding = RT_BINDING_MATERIAL_IDS) RT_SCENE_ACCESS buffer SceneMaterialIds { uint rt_material_ids[]; };
 layout(std430, binding = RT_BINDING_MATERIALS) RT_SCENE_ACCESS buffer SceneMaterials { Material rt_materials[]; };
+#ifndef RT_SCENE_MATERIALS_ONLY
 layout(std430, binding = RT_BINDING_LIGHTS) RT_SCENE_ACCESS buffer SceneLights { Light rt_lights[]; };
+#endif
 // sRGB decode and alpha tables (the exact floats the C++ sample_texture uses), then the textures, unpadded: words
 // [0, 4 * rt_texture_count) hold one TextureInfo per texture, the rest every texture's texels one after the other
 // (one uint per texel: the file's RGBA8 bytes r, g, b, a from the low byte up; row 0 = top of the image = v 0).
@@ -76,6 +85,7 @@ uvec4 rt_texel_bytes(TextureInfo info, int x, int y) {
     return uvec4(w & 0xffu, (w >> 8) & 0xffu, (w >> 16) & 0xffu, w >> 24);
 }
 
+#ifndef RT_SCENE_MATERIALS_ONLY
 void load_triangle(uint triangle, out vec3 a, out vec3 b, out vec3 c) {
     a = rt_positions[3u * triangle].xyz;
     b = rt_positions[3u * triangle + 1u].xyz;
@@ -116,3 +126,4 @@ SurfacePoint surface_point(Ray ray, uint triangle, float u, float v) {
     s.material = rt_material_ids[triangle];
     return s;
 }
+#endif

@@ -77,6 +77,9 @@ void main() {
         e.ray = wf_make_ray(vec3(0.0), vec3(0.0), 0.0, vec3(0.0), WF_NO_PIXEL, 0u, WF_KIND_PRIMARY, 1u, 0u);
         wf_hits[slot] = e;
         wf_flags[slot] = 0u;
+#ifdef ENABLE_CUTOUTS
+        wf_ray_slots[slot] = e.ray;   // not deferred
+#endif
         return;
     }
     const uint pixel = uint(p.y * wf_image_size.x + p.x);
@@ -124,6 +127,25 @@ void main() {
     // STUB: e.triangle = -1;
     // END EXERCISE
     wf_flush_tests(pixel);
+#ifdef ENABLE_CUTOUTS
+    // Cut-outs (docs/gpu.md, "Cut-outs in stage 02"): the G-buffer knows nothing of opacity, and the raster's uv is
+    // not the ray's, so it cannot say whether the ray passes through a MASK or BLEND surface. The closest candidate
+    // above ignores opacity; when it is such a surface, the pixel's camera ray is deferred: written to its ray slot
+    // and traced by the stage's traversal (which applies the opacity test, opacity.glsl) after the rasterized hits
+    // are shaded, as stages 03-05 trace theirs. A pixel whose candidate is opaque keeps it: no hit in front of it
+    // was missed (a transparent hit can only remove hits, never add one), so it is exact as before.
+    WavefrontRay deferred = e.ray;
+    deferred.pixel = WF_NO_PIXEL;
+    if (e.triangle >= 0 && rt_materials[rt_material_ids[uint(e.triangle)]].alpha_mode != RT_ALPHA_OPAQUE) {
+        deferred = e.ray;
+        e.ray.pixel = WF_NO_PIXEL;   // its primary record comes from the trace pass (--dump-hits)
+        wf_ray_slots[slot] = deferred;
+        wf_hits[slot] = e;
+        wf_flags[slot] = 0u;
+        return;
+    }
+    wf_ray_slots[slot] = deferred;
+#endif
     wf_hits[slot] = e;
     wf_flags[slot] = e.triangle >= 0 ? 1u : 0u;
     if (e.triangle < 0) wf_accumulate(pixel, rt_miss_radiance(ray.direction));   // kept with triangle -1 for the hit records

@@ -1,0 +1,133 @@
+// Alpha cut-outs on the CPU (opacity.h, docs/shading.md "Alpha: cut-outs and blending"): the opacity test itself,
+// the effect analysis, and stage 01's brute force honouring it (stage 03's grid: 03_uniform_grid/grid_cutouts_test.cpp).
+#include "opacity.h"
+
+#include <gtest/gtest.h>
+
+
+#include "brute_force_tracer.h"
+#include "whitted.h"
+#include "common/scene/builtin_scenes.h"
+#include "common/scene/effects.h"
+
+namespace rt {
+namespace {
+
+// One triangle (0,0,0) (1,0,0) (0,1,0) with uvs equal to its xy, and one material.
+Scene one_triangle(const Material& m) {
+    Scene s;
+    s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    s.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    s.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    s.material_ids = {0};
+    s.materials = {m};
+    return s;
+}
+
+Material masked(float factor_alpha, float cutoff) {
+    Material m;
+    m.base_color.a = factor_alpha;
+    m.alpha_mode = AlphaMode::Mask;
+    m.alpha_cutoff = cutoff;
+    return m;
+}
+
+TEST(Opacity, FactorAlphaOnlyIsOpaqueExactlyAtTheCutoff) {
+    EXPECT_TRUE(surface_opaque(one_triangle(masked(0.5f, 0.5f)), 0, 0.2f, 0.2f));   // glTF: >= cutoff is opaque
+    EXPECT_FALSE(surface_opaque(one_triangle(masked(std::nextafter(0.5f, 0.0f), 0.5f)), 0, 0.2f, 0.2f));
+    EXPECT_TRUE(surface_opaque(one_triangle(masked(0.0f, 0.0f)), 0, 0.2f, 0.2f));    // cutoff 0: nothing cut
+    EXPECT_EQ(surface_opacity(one_triangle(masked(0.25f, 0.5f)), 0, 0.3f, 0.1f), 0.25f);
+}
+
+TEST(Opacity, OpaqueMaterialsIgnoreAlphaAndBlendCutsAtHalf) {
+    Material m = masked(0.1f, 0.05f);
+    m.alpha_mode = AlphaMode::Opaque;
+    EXPECT_TRUE(surface_opaque(one_triangle(m), 0, 0.2f, 0.2f));
+    m.alpha_mode = AlphaMode::Blend;   // alphaCutoff is not used by BLEND: 0.5
+    EXPECT_EQ(alpha_test_cutoff(m), 0.5f);
+    EXPECT_FALSE(surface_opaque(one_triangle(m), 0, 0.2f, 0.2f));
+    m.base_color.a = 0.5f;
+    EXPECT_TRUE(surface_opaque(one_triangle(m), 0, 0.2f, 0.2f));
+}
+
+TEST(Opacity, TextureAlphaIsSampledBilinearlyAtTheInterpolatedUv) {
+    // 2 x 1 texture, alpha 0 on the left texel and 255 on the right; bilinear between the texel centres (u 0.25
+    // and 0.75), so alpha rises linearly from 0 to 1 there.
+    Scene s = one_triangle(masked(0.8f, 0.4f));
+    Texture t;
+    t.width = 2;
+    t.height = 1;
+    t.rgba8 = {255, 255, 255, 0, 255, 255, 255, 255};
+    s.textures = {t};
+    s.materials[0].base_color_texture = 0;
+    // u = 0.5 (barycentric u of vertex 1 = the uv's x): alpha 0.5, opacity 0.8 * 0.5 = 0.4, at the cutoff.
+    EXPECT_EQ(surface_opacity(s, 0, 0.5f, 0.25f), 0.8f * 0.5f);
+    EXPECT_TRUE(surface_opaque(s, 0, 0.5f, 0.25f));
+    EXPECT_FALSE(surface_opaque(s, 0, 0.45f, 0.25f));
+    EXPECT_EQ(surface_opacity(s, 0, 0.3f, 0.1f), 0.8f * sample_texture(t, {0.3f, 0.1f}).a);
+    // The same uv as surface_point interpolates, in double geometry too.
+    Ray<double> ray;
+    Hit<double> hit;
+    hit.triangle = 0;
+    hit.u = 0.6;
+    hit.v = 0.3;
+    EXPECT_EQ(surface_opacity(s, 0, hit.u, hit.v), 0.8f * sample_texture(t, surface_point(s, ray, hit).uv).a);
+}
+
+TEST(Opacity, EffectAnalysisAsksForCutoutsOnlyWhenATriangleUsesAMaskOrBlendMaterial) {
+    EXPECT_TRUE(analyze_effects(flatten(make_builtin_scene("cutouts"), {})).cutouts);
+    for (const char* name : {"whitted", "cornell", "diffuse"})
+        EXPECT_FALSE(analyze_effects(flatten(make_builtin_scene(name), {})).cutouts) << name;
+    Scene s = one_triangle(masked(1.0f, 0.5f));
+    s.materials.push_back(s.materials[0]);
+    s.materials[0].alpha_mode = AlphaMode::Opaque;   // the MASK material (1) is used by no triangle
+    EXPECT_FALSE(analyze_effects(s).cutouts);
+    EXPECT_TRUE(resolve_effects("cutouts", s).cutouts);
+    EXPECT_TRUE(resolve_effects("all", s).cutouts);
+    EXPECT_EQ(resolve_effects("cutouts,shadows", s).names(), (std::vector<std::string>{"shadows", "cutouts"}));
+}
+
+// A hole (alpha 0) in front of a wall: every ray kind passes through the hole and stops at the solid part.
+TEST(Opacity, BruteForceSeesThroughHolesForClosestAndAnyHit) {
+    Scene s = one_triangle(masked(1.0f, 0.5f));
+    Texture t;   // 2 x 1, nearest: left half (u < 0.5) a hole
+    t.width = 2;
+    t.height = 1;
+    t.nearest = true;
+    t.rgba8 = {255, 255, 255, 0, 255, 255, 255, 255};
+    s.textures = {t};
+    s.materials[0].base_color_texture = 0;
+    s.materials.push_back(Material{});   // the wall behind, opaque
+    for (const glm::vec3& p : {glm::vec3(-1, -1, -1), glm::vec3(2, -1, -1), glm::vec3(-1, 2, -1)}) {
+        s.positions.push_back(p);
+        s.normals.push_back({0, 0, 1});
+        s.uvs.push_back({0, 0});
+    }
+    s.material_ids.push_back(1);
+    Ray<float> through_hole, through_solid;
+    through_hole.origin = {0.2f, 0.3f, 1.0f};
+    through_solid.origin = {0.7f, 0.1f, 1.0f};
+    for (IntersectMethod method : {IntersectMethod::Watertight, IntersectMethod::Moller}) {
+        const BruteForceTracer<float> cut(s, method, true), plain(s, method, false);
+        RayCounters c;
+        Hit<float> hit;
+        EXPECT_TRUE(cut.closest(through_hole, hit, c));
+        EXPECT_EQ(hit.triangle, 1) << "the wall behind the hole";
+        EXPECT_FLOAT_EQ(hit.t, 2.0f);
+        hit = Hit<float>();
+        EXPECT_TRUE(plain.closest(through_hole, hit, c));
+        EXPECT_EQ(hit.triangle, 0) << "without cut-outs the hole is a surface";
+        hit = Hit<float>();
+        EXPECT_TRUE(cut.closest(through_solid, hit, c));
+        EXPECT_EQ(hit.triangle, 0);
+        Ray<float> shadow = through_hole;
+        shadow.tmax = 1.5f;   // stops before the wall: only the cut-out could block it
+        EXPECT_FALSE(cut.occluded(shadow, c));
+        EXPECT_TRUE(plain.occluded(shadow, c));
+        shadow.origin = through_solid.origin;
+        EXPECT_TRUE(cut.occluded(shadow, c));
+    }
+}
+
+}  // namespace
+}  // namespace rt
