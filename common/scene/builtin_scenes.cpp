@@ -8,6 +8,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "builtin_builders.h"
 #include "builtin_surface_scenes.h"
 #include "gltf_io.h"
 
@@ -49,11 +50,6 @@ Material glass(const std::string& name) {
     return m;
 }
 
-int add_material(SceneAsset& a, const Material& m) {
-    a.materials.push_back(m);
-    return int(a.materials.size() - 1);
-}
-
 // A mesh of one primitive; returns the mesh index.
 int add_mesh(SceneAsset& a, const std::string& name, Primitive p) {
     Mesh m;
@@ -69,13 +65,6 @@ int add_node(SceneAsset& a, Node n, bool root = true) {
     const int index = int(a.nodes.size() - 1);
     if (root) a.roots.push_back(index);
     return index;
-}
-
-int add_mesh_node(SceneAsset& a, const std::string& name, Primitive p) {
-    Node n;
-    n.name = name;
-    n.mesh = add_mesh(a, name, std::move(p));
-    return add_node(a, n);
 }
 
 // Rotation that turns a glTF camera (looking down -Z, +Y up) to look from eye at target.
@@ -111,18 +100,6 @@ void add_point_light(SceneAsset& a, const glm::vec3& position, float intensity) 
     n.light = int(a.lights.size() - 1);
     n.translation = position;
     add_node(a, n);
-}
-
-// A quad centred at c spanning c +- u +- v, facing cross(u, v), indexed; uv from (0,0) to (uv_scale, uv_scale).
-Primitive make_quad(const glm::vec3& c, const glm::vec3& u, const glm::vec3& v, float uv_scale, int material) {
-    Primitive p;
-    p.material = material;
-    const glm::vec3 n = glm::normalize(glm::cross(u, v));
-    p.positions = {c - u - v, c + u - v, c + u + v, c - u + v};
-    p.normals = {n, n, n, n};
-    p.uvs = {{0, uv_scale}, {uv_scale, uv_scale}, {uv_scale, 0}, {0, 0}};
-    p.indices = {0, 1, 2, 0, 2, 3};
-    return p;
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -579,6 +556,32 @@ int parse_sphere_count(const std::string& text) {
 }
 
 }  // namespace
+
+// The builders builtin_builders.h shares with the other built-in scene files.
+
+int add_material(SceneAsset& a, const Material& m) {
+    a.materials.push_back(m);
+    return int(a.materials.size() - 1);
+}
+
+int add_mesh_node(SceneAsset& a, const std::string& name, Primitive p) {
+    Node n;
+    n.name = name;
+    n.mesh = add_mesh(a, name, std::move(p));
+    return add_node(a, n);
+}
+
+// A quad centred at c spanning c +- u +- v, facing cross(u, v), indexed; uv from (0,0) to (uv_scale, uv_scale).
+Primitive make_quad(const glm::vec3& c, const glm::vec3& u, const glm::vec3& v, float uv_scale, int material) {
+    Primitive p;
+    p.material = material;
+    const glm::vec3 n = glm::normalize(glm::cross(u, v));
+    p.positions = {c - u - v, c + u - v, c + u + v, c - u + v};
+    p.normals = {n, n, n, n};
+    p.uvs = {{0, uv_scale}, {uv_scale, uv_scale}, {uv_scale, 0}, {0, 0}};
+    p.indices = {0, 1, 2, 0, 2, 3};
+    return p;
+}
 
 std::vector<std::string> builtin_scene_names() {
     return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office", "material_maps",

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "builtin_builders.h"
 #include "builtin_scenes.h"
 
 namespace rt {
@@ -18,23 +19,6 @@ Material material(const std::string& name, glm::vec3 color, float metallic, floa
     m.metallic = metallic;
     m.roughness = roughness;
     return m;
-}
-
-int add(SceneAsset& a, const Material& m) {
-    a.materials.push_back(m);
-    return int(a.materials.size() - 1);
-}
-
-void add_mesh_node(SceneAsset& a, const std::string& name, Primitive p) {
-    Mesh mesh;
-    mesh.name = name;
-    mesh.primitives.push_back(std::move(p));
-    a.meshes.push_back(std::move(mesh));
-    Node n;
-    n.name = name;
-    n.mesh = int(a.meshes.size() - 1);
-    a.nodes.push_back(n);
-    a.roots.push_back(int(a.nodes.size() - 1));
 }
 
 void add_camera_and_light(SceneAsset& a, const glm::vec3& eye, const glm::vec3& target, const glm::vec3& light,
@@ -62,19 +46,6 @@ void add_camera_and_light(SceneAsset& a, const glm::vec3& eye, const glm::vec3& 
     ln.translation = light;
     a.nodes.push_back(ln);
     a.roots.push_back(int(a.nodes.size() - 1));
-}
-
-// A quad centred at c spanning c +- u +- v, facing cross(u, v); uv (0, 0) at c - u + v (top left, v down) to
-// (uv_scale, uv_scale).
-Primitive quad(const glm::vec3& c, const glm::vec3& u, const glm::vec3& v, float uv_scale, int material_index) {
-    Primitive p;
-    p.material = material_index;
-    const glm::vec3 n = glm::normalize(glm::cross(u, v));
-    p.positions = {c - u - v, c + u - v, c + u + v, c - u + v};
-    p.normals = {n, n, n, n};
-    p.uvs = {{0, uv_scale}, {uv_scale, uv_scale}, {uv_scale, 0}, {0, 0}};
-    p.indices = {0, 1, 2, 0, 2, 3};
-    return p;
 }
 
 // A 2x2 sRGB checker, nearest filtering.
@@ -117,21 +88,21 @@ SceneAsset absorption_scene() {
     a.textures.push_back(checker({230, 230, 230, 255}, {40, 40, 40, 255}));
     Material checkered = material("checker", glm::vec3(1.0f), 0.0f, 1.0f);
     checkered.base_color_texture = 0;
-    const int checker_m = add(a, checkered);
+    const int checker_m = add_material(a, checkered);
     // Blue-green glass: white light keeps (0.25, 0.65, 0.9) after 0.3 m inside.
     Material volume = material("absorbing glass", glm::vec3(1.0f), 0.0f, 0.0f);
     volume.transmission = 1.0f;
     volume.thickness = 1.0f;
     volume.attenuation_color = glm::vec3(0.25f, 0.65f, 0.9f);
     volume.attenuation_distance = 0.3f;
-    const int volume_m = add(a, volume);
+    const int volume_m = add_material(a, volume);
     Material thin = volume;
     thin.name = "thin-walled glass";
     thin.thickness = 0.0f;
-    const int thin_m = add(a, thin);
+    const int thin_m = add_material(a, thin);
 
-    add_mesh_node(a, "floor", quad({0, 0, -1}, {4, 0, 0}, {0, 0, -3}, 6.0f, checker_m));
-    add_mesh_node(a, "wall", quad({0, 2, -2.5f}, {4, 0, 0}, {0, 2, 0}, 4.0f, checker_m));
+    add_mesh_node(a, "floor", make_quad({0, 0, -1}, {4, 0, 0}, {0, 0, -3}, 6.0f, checker_m));
+    add_mesh_node(a, "wall", make_quad({0, 2, -2.5f}, {4, 0, 0}, {0, 2, 0}, 4.0f, checker_m));
     const float depths[4] = {0.6f, 0.15f, 0.45f, 0.9f};
     for (int i = 0; i < 4; ++i) {
         const float x = -1.8f + 1.2f * float(i), d = depths[i];
@@ -149,24 +120,24 @@ SceneAsset normal_map_scene() {
     a.textures.push_back(bump_normals());
     Material wall = material("bumpy wall", glm::vec3(0.8f, 0.75f, 0.7f), 0.0f, 0.6f);
     wall.normal_texture = 0;
-    const int wall_m = add(a, wall);
+    const int wall_m = add_material(a, wall);
     Material floor = material("bumpy floor", glm::vec3(0.5f, 0.6f, 0.7f), 0.0f, 1.0f);
     floor.normal_texture = 0;
     floor.normal_scale = 0.7f;
     floor.normal_transform.rotation = 0.5f;
     floor.normal_transform.scale = {2.0f, 1.0f};
     floor.normal_transform.offset = {0.25f, 0.0f};
-    const int floor_m = add(a, floor);
+    const int floor_m = add_material(a, floor);
     Material ball = material("bumpy ball", glm::vec3(0.9f, 0.45f, 0.15f), 0.0f, 0.4f);
     ball.normal_texture = 0;
     ball.normal_transform.scale = {8.0f, 4.0f};
-    const int ball_m = add(a, ball);
-    const int mirror_m = add(a, material("mirror", glm::vec3(0.9f), 1.0f, 0.0f));
+    const int ball_m = add_material(a, ball);
+    const int mirror_m = add_material(a, material("mirror", glm::vec3(0.9f), 1.0f, 0.0f));
 
-    Primitive wall_quad = quad({0, 1.5f, -2}, {3, 0, 0}, {0, 1.5f, 0}, 4.0f, wall_m);
+    Primitive wall_quad = make_quad({0, 1.5f, -2}, {3, 0, 0}, {0, 1.5f, 0}, 4.0f, wall_m);
     wall_quad.tangents.assign(4, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));   // given, as a glTF TANGENT attribute
     add_mesh_node(a, "wall", std::move(wall_quad));
-    add_mesh_node(a, "floor", quad({0, 0, 0}, {3, 0, 0}, {0, 0, -2}, 3.0f, floor_m));
+    add_mesh_node(a, "floor", make_quad({0, 0, 0}, {3, 0, 0}, {0, 0, -2}, 3.0f, floor_m));
     add_mesh_node(a, "bumpy ball", make_uv_sphere({-0.9f, 0.7f, 0.0f}, 0.7f, 24, 12, ball_m));
     add_mesh_node(a, "mirror ball", make_uv_sphere({0.9f, 0.7f, 0.3f}, 0.7f, 24, 12, mirror_m));
     add_camera_and_light(a, {0.0f, 1.6f, 4.6f}, {0.0f, 0.9f, -0.5f}, {2.5f, 3.5f, 2.5f}, 55.0f);
