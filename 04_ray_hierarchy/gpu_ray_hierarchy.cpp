@@ -12,17 +12,18 @@ using gpu::Program;
 
 constexpr const char* kKindNames[4] = {"primary", "shadow", "reflection", "refraction"};
 constexpr std::size_t kMaxCapacity = std::size_t(1) << 20;   // entries per buffer: 16 MiB of (node, triangle) pairs
+constexpr std::uint32_t kTriangleFlag = 0x80000000u;          // rh_common.glsl: RH_TRIANGLE_FLAG
+constexpr std::uint32_t kMaxRayIndex = 1u << 27;              // RH_RAY_INDEX_BITS
+constexpr int kMaxRayLevels = 32;                             // rh_test.comp's level tables
+// rh_info.glsl
+constexpr std::uint32_t kInfoWords = 144, kInfoLeaves = 8, kInfoExact = 10, kInfoObjectIn = 12, kInfoObjectOut = 14,
+                        kInfoLevelIn = 16, kInfoLevelOut = 80, kInfoGroupFirst = 8;
 
 void barrier() {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
-// The RhObject layout of rh_common.glsl.
-struct GpuObject {
-    glm::vec4 sphere{0.0f};
-    std::uint32_t first = 0, count = 0, pad0 = 0, pad1 = 0;
-};
-static_assert(sizeof(GpuObject) == 32);
+std::uint64_t word64(const std::uint32_t* w, std::uint32_t i) { return std::uint64_t(w[i + 1]) << 32 | w[i]; }
 }  // namespace
 
 std::vector<ObjectRange> object_ranges(const std::vector<std::uint32_t>& material_ids, std::uint32_t max_count) {
@@ -36,20 +37,20 @@ std::vector<ObjectRange> object_ranges(const std::vector<std::uint32_t>& materia
 }
 
 std::uint64_t HierarchyKindStats::node_tests() const {
-    std::uint64_t n = object_pairs_in;
-    for (std::size_t l = 1; l < levels.size(); ++l) n += levels[l].pairs_in;
-    return n;
+    std::uint64_t n = 0;
+    for (const HierarchyLevelStats& l : levels) n += l.pairs_in;
+    return n - sphere_tests;
 }
 
 std::vector<std::string> GpuRayHierarchy::program_names() {
     std::vector<std::string> names;
-    for (const char* p : {"rh_spheres.comp", "rh_heads.comp", "rh_build.comp", "rh_test.comp", "rh_expand.comp",
-                          "rh_leaf.comp", "rh_fold.comp"})
+    for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_build.comp", "rh_test.comp",
+                          "rh_expand.comp", "rh_leaf.comp", "rh_fold.comp"})
         names.push_back(std::string("04_ray_hierarchy/") + p);
     return names;
 }
 
-GpuRayHierarchy::GpuRayHierarchy() : info_(8 * sizeof(std::uint32_t)), group_count_(sizeof(std::uint32_t)) {}
+GpuRayHierarchy::GpuRayHierarchy() : info_(kInfoWords * sizeof(std::uint32_t)), group_count_(sizeof(std::uint32_t)) {}
 
 void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     std::string key;
@@ -57,6 +58,7 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     if (key == key_ && spheres_) return;
     const gpu::ShaderDefines& d = wavefront.defines();
     spheres_ = Program::compute("04_ray_hierarchy/rh_spheres.comp", d);
+    tree_ = Program::compute("04_ray_hierarchy/ot_build.comp", d);
     build_ = Program::compute("04_ray_hierarchy/rh_build.comp", d);
     heads_ = Program::compute("04_ray_hierarchy/rh_heads.comp", d);
     test_ = Program::compute("04_ray_hierarchy/rh_test.comp", d);
@@ -69,48 +71,111 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     key_ = key;
 }
 
-void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<ObjectRange>& objects) {
+void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<ObjectRange>& objects,
+                              const Bounds& bounds) {
     triangles_ = scene.triangle_count();
-    objects_ = objects.size();
+    objects_ = 0;
+    object_nodes_ = 0;
+    object_level_first_.clear();
+    object_level_count_.clear();
     if (!spheres_) spheres_ = Program::compute("04_ray_hierarchy/rh_spheres.comp");
-    std::vector<GpuObject> gpu_objects(objects.size());
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-        gpu_objects[i].first = objects[i].first;
-        gpu_objects[i].count = objects[i].count;
-    }
+    order_.reserve(4);   // bound by every expansion, read only with --objects tree
+    objects_buf_.reserve(sizeof(ObjectNode));
     spheres_buf_.reserve(std::max<std::size_t>(triangles_, 1) * sizeof(glm::vec4));
-    objects_buf_.reserve(std::max<std::size_t>(objects_, 1) * sizeof(GpuObject));
-    if (!gpu_objects.empty()) objects_buf_.upload(gpu_objects.data(), gpu_objects.size() * sizeof(GpuObject));
     scene.bind();
     spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
-    objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-    for (unsigned mode = 0; mode < 2; ++mode) {
-        const std::size_t n = mode == 0 ? triangles_ : objects_;
-        if (n == 0) continue;
-        spheres_.set("rh_mode", mode);
-        spheres_.set("rh_count", unsigned(n));
-        spheres_.dispatch_threads(n);
+    if (triangles_ == 0) return;
+    spheres_.set("rh_mode", 0u);
+    spheres_.set("rh_count", unsigned(triangles_));
+    spheres_.dispatch_threads(triangles_);
+    barrier();
+    if (options.objects == ObjectMode::meshes && !objects.empty()) {
+        std::vector<ObjectNode> nodes(objects.size());
+        for (std::size_t i = 0; i < objects.size(); ++i) {
+            nodes[i].first = objects[i].first;
+            nodes[i].count = objects[i].count;
+        }
+        objects_buf_.reserve(nodes.size() * sizeof(ObjectNode));
+        objects_buf_.upload(nodes.data(), nodes.size() * sizeof(ObjectNode));
+        objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
+        spheres_.set("rh_mode", 1u);
+        spheres_.set("rh_count", unsigned(nodes.size()));
+        spheres_.dispatch_threads(nodes.size());
         barrier();
+        objects_ = object_nodes_ = nodes.size();
+        object_level_first_ = {0};
+        object_level_count_ = {std::uint32_t(nodes.size())};
+    } else if (options.objects == ObjectMode::tree) {
+        build_tree(bounds);
     }
-    gpu::check_gl("04_ray_hierarchy: bounding spheres");
+    gpu::check_gl("04_ray_hierarchy: bounding spheres and objects");
 }
 
-std::uint32_t GpuRayHierarchy::read_info(int index) const { return info_.download_value<std::uint32_t>(index); }
+// object_tree.h: Morton codes of the spheres' centres, sorted; clusters; levels up to a single root.
+void GpuRayHierarchy::build_tree(const Bounds& bounds) {
+    if (!tree_) tree_ = Program::compute("04_ray_hierarchy/ot_build.comp");
+    if (!radix_) radix_ = std::make_unique<gpu::RadixSort>();
+    const std::uint32_t n = std::uint32_t(triangles_);
+    keys_.reserve(std::size_t(n) * 4);
+    order_.reserve(std::size_t(n) * 4);
+    spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
+    keys_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
+    order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
+    tree_.set("ot_mode", 0u);
+    tree_.set("ot_count", n);
+    tree_.set("ot_box_min", bounds.lo);
+    tree_.set("ot_scale", morton_scale(bounds.lo, bounds.hi));
+    tree_.dispatch_threads(n);
+    barrier();
+    radix_->sort(keys_, order_, n, 3 * kMortonAxisBits);
+    // The levels' sizes follow from n alone: level 1 holds ceil(n / kClusterSize) clusters, each level above
+    // ceil(below / kObjectBranching) nodes, up to one.
+    std::uint32_t total = 0;
+    for (std::uint32_t count = (n + kClusterSize - 1) / kClusterSize;; count = (count + kObjectBranching - 1) / kObjectBranching) {
+        object_level_first_.push_back(total);
+        object_level_count_.push_back(count);
+        total += count;
+        if (count <= 1) break;
+    }
+    objects_buf_.reserve(std::size_t(total) * sizeof(ObjectNode));
+    spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
+    objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
+    order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
+    for (std::size_t l = 0; l < object_level_count_.size(); ++l) {
+        tree_.set("ot_mode", l == 0 ? 1u : 2u);
+        tree_.set("ot_count", object_level_count_[l]);
+        tree_.set("ot_triangles", n);
+        tree_.set("ot_child_first", l == 0 ? 0u : object_level_first_[l - 1]);
+        tree_.set("ot_child_count", l == 0 ? n : object_level_count_[l - 1]);
+        tree_.set("ot_node_first", object_level_first_[l]);
+        tree_.set("ot_level", unsigned(l + 1));
+        tree_.set("ot_fanout", l == 0 ? kClusterSize : kObjectBranching);
+        tree_.dispatch_threads(object_level_count_[l]);
+        barrier();
+    }
+    object_nodes_ = total;
+    objects_ = object_level_count_.back();
+}
+
+std::uint32_t GpuRayHierarchy::read_info(int index) {
+    ++syncs;
+    return info_.download_value<std::uint32_t>(index);
+}
 
 std::string GpuRayHierarchy::phase(const char* name) const {
     return std::string(name) + "." + kKindNames[group_.kind];
 }
 
-void GpuRayHierarchy::level_buffers(int index) {
-    if (int(pairs_.size()) <= index) {
-        pairs_.resize(index + 1);
-        counts_.resize(index + 1);
-        offsets_.resize(index + 1);
+// The buffers of one step of the traversal, for `pairs` pairs tested there (grown as needed, never shrunk).
+void GpuRayHierarchy::step_buffers(int step, std::size_t pairs) {
+    if (int(pairs_.size()) <= step) {
+        pairs_.resize(step + 1);
+        counts_.resize(step + 1);
+        offsets_.resize(step + 1);
     }
-    pairs_[index].reserve(capacity_ * 8);
-    counts_[index].reserve(capacity_ * 4);
-    offsets_[index].reserve(capacity_ * 4);   // the work groups' offsets (capacity / 64), or the hit list's scan
-    group_sums_.reserve(capacity_ / 64 * 4 + 4);
+    counts_[step].reserve(pairs * 4);
+    offsets_[step].reserve((pairs / 64 + 1) * 4);   // the work groups' offsets
+    group_sums_.reserve((capacity_ / 64 + 1) * 4);
 }
 
 void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
@@ -120,6 +185,9 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
     capacity_ = std::clamp<std::size_t>(in.wavefront.storage_limit() / 16, 64, kMaxCapacity);
     if (options.pair_capacity > 0) capacity_ = std::min(capacity_, std::max<std::size_t>(options.pair_capacity, 16));
     const std::uint32_t n = std::uint32_t(in.count);
+    if (n >= kMaxRayIndex)
+        throw std::runtime_error("04_ray_hierarchy: a batch of " + std::to_string(n) + " rays exceeds the " +
+                                 std::to_string(kMaxRayIndex) + " a pair can name");
     // The hit list: 4 entries per ray (every ray keeps its closest hits after a prune; a ray of the batch takes 64
     // bytes in the queue, so 4 x 16 bytes per ray fit the storage limit too), or capacity() when that is more.
     const std::size_t per_ray = std::size_t(std::clamp(options.hit_list_per_ray, 1, 4));
@@ -130,6 +198,7 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
     in.rays.bind(gpu::kWavefrontBindingRaysIn);
     in.results.bind(gpu::kWavefrontBindingResults);
     if (in.tests_per_pixel) in.tests_per_pixel->bind(gpu::kWavefrontBindingTestsPerPixel);
+    info_.clear_u32(0);
     if (shadow) {
         in.results.clear_u32(0);
     } else {
@@ -142,7 +211,6 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         fold_.set("rh_count", n);
         fold_.dispatch_threads(n);
         barrier();
-        info_.clear_u32(0);
         hits_bound_ = 0;
     }
 
@@ -152,12 +220,16 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         ks.rays += g.count;
         ks.groups += 1;
         ks.brute_force_tests += std::uint64_t(g.count) * triangles_;
-        if (triangles_ == 0) continue;
+        if (triangles_ == 0 || (options.objects != ObjectMode::triangles && objects_ == 0)) continue;
         const int top = build(in, g);
+        const std::vector<std::uint32_t> zeros(kInfoWords - kInfoGroupFirst, 0u);
+        info_.upload(zeros.data(), zeros.size() * 4, kInfoGroupFirst * 4);
         traverse(top);
+        read_group_counts();
     }
     if (!shadow) fold(in);
-    // The leaves' tests, counted here, go to the pipeline's test counter in a few adds (one thread each).
+    // The leaves' exact tests, counted by rh_leaf.comp and read back per group, go to the pipeline's test counter in
+    // a few adds (one thread each).
     for (; pending_tests_ > 0;) {
         const std::uint32_t add = std::uint32_t(std::min<std::uint64_t>(pending_tests_, 1u << 31));
         fold_.set("rh_mode", 6u);
@@ -169,27 +241,46 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
     gpu::check_gl("04_ray_hierarchy: trace");
 }
 
+// The group's counts (rh_info.glsl), once per group: per ray level the pairs tested and kept, the object level's,
+// the exact tests.
+void GpuRayHierarchy::read_group_counts() {
+    std::uint32_t info[kInfoWords];
+    info_.download(info, sizeof info);
+    ++syncs;
+    HierarchyKindStats& ks = stats[group_.kind];
+    for (std::size_t l = 0; l < level_nodes_.size(); ++l) {
+        ks.levels[l].pairs_in += word64(info, kInfoLevelIn + 2 * std::uint32_t(l));
+        ks.levels[l].pairs_out += word64(info, kInfoLevelOut + 2 * std::uint32_t(l));
+    }
+    const std::uint64_t exact = word64(info, kInfoExact);
+    ks.levels[0].pairs_out += exact;
+    ks.object_pairs_in += word64(info, kInfoObjectIn);
+    ks.object_pairs_out += word64(info, kInfoObjectOut);
+    ks.local_tests += exact;
+    pending_tests_ += exact;
+}
+
 std::vector<GpuRayHierarchy::Group> GpuRayHierarchy::find_groups(const gpu::BatchTraceInputs& in) {
     const std::uint32_t n = std::uint32_t(in.count);
-    level_buffers(0);
-    Buffer& flags = counts_[0];
-    flags.reserve(std::size_t(n) * 4);
+    head_flags_.reserve(std::size_t(n) * 4);
     group_heads_.reserve(std::size_t(n) * 4);
     in.rays.bind(gpu::kWavefrontBindingRaysIn);
-    flags.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    head_flags_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
     heads_.set("wf_input_first", unsigned(in.first));
     heads_.set("wf_input_count", n);
     heads_.dispatch_threads(n);
     barrier();
-    compaction_.compact_indices(flags, n, group_heads_, group_count_);
+    compaction_.compact_indices(head_flags_, n, group_heads_, group_count_);
     const std::uint32_t count = group_count_.download_value<std::uint32_t>();
     const std::vector<std::uint32_t> heads = group_heads_.download<std::uint32_t>(count);
+    syncs += 2;
     std::vector<Group> groups;
     for (std::uint32_t i = 0; i < count; ++i) {
         Group g;
         g.first = heads[i];
         g.count = (i + 1 < count ? heads[i + 1] : n) - heads[i];
         const gpu::WavefrontRay r = in.rays.download_value<gpu::WavefrontRay>(in.first + g.first);
+        ++syncs;
         g.kind = (r.depth_kind >> 16) & 3u;
         groups.push_back(g);
     }
@@ -210,7 +301,7 @@ int GpuRayHierarchy::build(const gpu::BatchTraceInputs& in, const Group& g) {
         level_nodes_.push_back(n);
         total += n;
         const int upper = int(level_nodes_.size()) - 1;
-        if (n <= 1 || (options.levels > 0 && upper >= options.levels)) break;
+        if (n <= 1 || (options.levels > 0 && upper >= options.levels) || upper + 1 >= kMaxRayLevels) break;
     }
     nodes_.reserve(std::size_t(total) * 32);
     in.rays.bind(gpu::kWavefrontBindingRaysIn);
@@ -228,126 +319,142 @@ int GpuRayHierarchy::build(const gpu::BatchTraceInputs& in, const Group& g) {
     HierarchyKindStats& ks = stats[g.kind];
     if (ks.levels.size() < level_nodes_.size()) ks.levels.resize(level_nodes_.size());
     for (std::size_t l = 0; l < level_nodes_.size(); ++l) ks.levels[l].nodes += level_nodes_[l];
+    // The level tables of rh_test.comp.
+    std::vector<unsigned> first(kMaxRayLevels, 0u), nodes(kMaxRayLevels, 0u);
+    std::copy(level_first_.begin(), level_first_.end(), first.begin());
+    std::copy(level_nodes_.begin(), level_nodes_.end(), nodes.begin());
+    test_.set("rh_level_first", first);
+    test_.set("rh_level_nodes", nodes);
     return int(level_nodes_.size()) - 1;
 }
 
 void GpuRayHierarchy::set_source(const Program& p, const Source& s) const {
     p.set("rh_implicit", s.implicit ? 1u : 0u);
     p.set("rh_pair_first", s.pair_first);
+    p.set("rh_top_level", unsigned(top_));
     p.set("rh_node_first", s.node_first);
     p.set("rh_item_first", s.item_first);
     p.set("rh_item_count", std::max<std::uint32_t>(s.item_count, 1));
+    p.set("rh_item_flag", s.item_flag);
 }
 
-// The top level's pairs are every top node with every item (object or triangle): implicit chunks of at most
-// capacity() pairs, whole rows of items when a row fits.
+// The top's pairs are every top node with every item (triangles, mesh objects or the tree's top level): implicit
+// chunks of at most capacity() pairs, whole rows of items when a row fits.
 void GpuRayHierarchy::traverse(int top) {
     top_ = top;
-    for (int l = 0; l <= top + 1; ++l) level_buffers(l);
-    const bool objects = options.object_culling && objects_ > 0;
-    const std::uint32_t items = std::uint32_t(objects ? objects_ : triangles_);
+    const bool triangles = options.objects == ObjectMode::triangles;
+    const std::uint32_t items = std::uint32_t(triangles ? triangles_ : objects_);
+    const std::uint32_t item_first = triangles ? 0u : object_level_first_.back();
+    const std::uint32_t flag = triangles ? kTriangleFlag : 0u;
     const std::uint32_t nodes = level_nodes_[top];
     const std::uint32_t cap = std::uint32_t(capacity_);
     if (items <= cap) {
         const std::uint32_t per_chunk = cap / items;
         for (std::uint32_t n0 = 0; n0 < nodes; n0 += per_chunk) {
             const std::uint32_t k = std::min(per_chunk, nodes - n0);
-            test_chunk(objects ? top + 1 : top, Source{true, 0, n0, 0, items}, k * items, objects);
+            test_chunk(0, Source{true, 0, n0, item_first, items, flag}, k * items);
         }
     } else {
         for (std::uint32_t n0 = 0; n0 < nodes; ++n0)
             for (std::uint32_t i0 = 0; i0 < items; i0 += cap) {
                 const std::uint32_t k = std::min(cap, items - i0);
-                test_chunk(objects ? top + 1 : top, Source{true, 0, n0, i0, k}, k, objects);
+                test_chunk(0, Source{true, 0, n0, item_first + i0, k, flag}, k);
             }
     }
 }
 
-// One chunk of pairs at `level` (top + 1 = the object level): test, scan, then expand window by window, each window
-// traced down to the leaves before the next (depth first, so each level needs one buffer of capacity() pairs).
-void GpuRayHierarchy::test_chunk(int level, const Source& src, std::uint32_t count, bool objects) {
-    HierarchyKindStats& ks = stats[group_.kind];
-    const int node_level = objects ? top_ : level;
+// One chunk of pairs at one step of the traversal: test, scan, the leaves' pairs to rh_leaf.comp, then the
+// children expanded window by window, each window traced on before the next (depth first, so each step needs one
+// buffer of capacity() pairs).
+void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t count) {
+    step_buffers(step, count);
     const std::uint32_t b = std::uint32_t(options.branching);
-    std::uint32_t total = 0, survivors = 0;
+    std::uint32_t total = 0, leaf_pairs = 0;
     {
         std::optional<gpu::GpuTimer::Scope> timed;
         if (timer) timed.emplace(*timer, phase("rh_traverse"));
-        const std::uint32_t zero = 0;
-        info_.upload(&zero, 4, 0);
+        const std::uint32_t zero[2] = {0, 0};
+        info_.upload(&zero[0], 4, 3 * 4);
+        info_.upload(&zero[1], 4, kInfoLeaves * 4);
+        in_->rays.bind(gpu::kWavefrontBindingRaysIn);
         nodes_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
         spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
         objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-        if (!src.implicit) pairs_[level].bind(gpu::kWavefrontBindingTraversalFirst + 3);
-        counts_[level].bind(gpu::kWavefrontBindingTraversalFirst + 5);
+        if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+        counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
         info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
         group_sums_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
         set_source(test_, src);
         test_.set("rh_count", count);
-        test_.set("rh_level_first", level_first_[node_level]);
-        test_.set("rh_children", level_nodes_[node_level - 1]);
+        test_.set("rh_group_first", unsigned(in_->first + group_.first));
         test_.set("rh_branching", b);
-        test_.set("rh_objects_mode", objects ? 1u : 0u);
+        test_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
         test_.dispatch_threads(count);
         barrier();
         const std::size_t groups = (std::size_t(count) + 63) / 64;
-        compaction_.scan().exclusive(group_sums_, offsets_[level], groups, &info_, 12);
-        std::uint32_t info[4];
+        compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, 12);
+        std::uint32_t info[kInfoLeaves + 1];
         info_.download(info, sizeof info);
-        survivors = info[0];
+        ++syncs;
         total = info[3];
+        leaf_pairs = info[kInfoLeaves];
         ++chunks;
     }
-    if (objects) {
-        ks.object_pairs_in += count;
-        ks.object_pairs_out += survivors;
-    } else {
-        ks.levels[level].pairs_in += count;
-        ks.levels[level].pairs_out += survivors;
-    }
-    const int out_level = objects ? top_ : level - 1;
+    if (leaf_pairs > 0) leaves(step, count, leaf_pairs);
     const std::uint32_t cap = std::uint32_t(capacity_);
     for (std::uint32_t w0 = 0; w0 < total; w0 += cap) {
         const std::uint32_t w = std::min(cap, total - w0);
         {
             std::optional<gpu::GpuTimer::Scope> timed;
             if (timer) timed.emplace(*timer, phase("rh_traverse"));
+            step_buffers(step + 1, 0);
+            pairs_[step + 1].reserve(std::size_t(w) * 8);
+            order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
             objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-            if (!src.implicit) pairs_[level].bind(gpu::kWavefrontBindingTraversalFirst + 3);
-            pairs_[out_level].bind(gpu::kWavefrontBindingTraversalFirst + 4);
-            counts_[level].bind(gpu::kWavefrontBindingTraversalFirst + 5);
-            offsets_[level].bind(gpu::kWavefrontBindingTraversalFirst + 6);
+            if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+            pairs_[step + 1].bind(gpu::kWavefrontBindingTraversalFirst + 4);
+            counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
+            offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 6);
             set_source(expand_, src);
             expand_.set("rh_count", count);
             expand_.set("rh_window_first", w0);
             expand_.set("rh_window_count", w);
             expand_.set("rh_branching", b);
-            expand_.set("rh_objects_mode", objects ? 1u : 0u);
+            expand_.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
             expand_.dispatch_threads(count);
             barrier();
             ++windows;
         }
-        if (out_level == 0)
-            leaves(w);
-        else
-            test_chunk(out_level, Source{false, 0, 0, 0, 0}, w, false);
+        test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, w);
     }
 }
 
-void GpuRayHierarchy::leaves(std::uint32_t count) {
+// The chunk's (ray, triangle) pairs (leaf_pairs of its count pairs) to rh_leaf.comp.
+void GpuRayHierarchy::leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs) {
     HierarchyKindStats& ks = stats[group_.kind];
-    ks.levels[0].pairs_in += count;
-    ks.local_tests += count;
-    pending_tests_ += count;
+    ks.sphere_tests += leaf_pairs;
+    ks.levels[0].pairs_in += leaf_pairs;   // their survivors, the exact tests, come with the group's counts
     if (shadow_) {
-        leaf_dispatch(0, count);
+        leaf_dispatch(step, 0, count);
         return;
     }
-    // The hit list holds hit_capacity_ entries: a chunk goes in once there is room for all of its pairs (each may
-    // add one hit); when there is not, hits left behind by closer ones are pruned, and the chunk is split if needed.
-    // Only a batch whose rays keep 4 hits each within the tie range would fill it: then a clear error, not a
-    // dropped hit.
+    // The hit list holds hit_capacity_ entries: a chunk goes in once there is room for all of its leaf pairs (each
+    // may add one hit); when there is not, hits left behind by closer ones are pruned, and the chunk is split if
+    // needed (a part of n pairs holds at most n leaf pairs). Only a batch whose rays all keep 4 hits within the tie
+    // range would fill it: then a clear error, not a dropped hit.
     const std::uint64_t cap = hit_capacity_;
+    if (hits_bound_ + leaf_pairs > cap) {
+        hits_bound_ = read_info(1);
+        if (hits_bound_ + leaf_pairs > cap) {
+            prune_hits();
+            hits_bound_ = read_info(1);
+        }
+    }
+    if (hits_bound_ + leaf_pairs <= cap) {
+        leaf_dispatch(step, 0, count);
+        hits_bound_ += leaf_pairs;
+        return;
+    }
     for (std::uint32_t first = 0; first < count;) {
         if (hits_bound_ + (count - first) > cap) {
             hits_bound_ = read_info(1);
@@ -361,13 +468,13 @@ void GpuRayHierarchy::leaves(std::uint32_t count) {
             throw std::runtime_error("04_ray_hierarchy: more than " + std::to_string(cap) +
                                      " hits within the tie range of their rays' closest hits (the hit list is full)");
         const std::uint32_t n = std::uint32_t(std::min<std::uint64_t>(room, count - first));
-        leaf_dispatch(first, n);
+        leaf_dispatch(step, first, n);
         hits_bound_ += n;
         first += n;
     }
 }
 
-void GpuRayHierarchy::leaf_dispatch(std::uint32_t first, std::uint32_t count) {
+void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t count) {
     std::optional<gpu::GpuTimer::Scope> timed;
     if (timer) timed.emplace(*timer, phase("rh_local"));
     const Program& p = shadow_ ? leaf_shadow_ : leaf_closest_;
@@ -375,14 +482,14 @@ void GpuRayHierarchy::leaf_dispatch(std::uint32_t first, std::uint32_t count) {
     in.rays.bind(gpu::kWavefrontBindingRaysIn);
     in.results.bind(gpu::kWavefrontBindingResults);
     if (in.tests_per_pixel) in.tests_per_pixel->bind(gpu::kWavefrontBindingTestsPerPixel);
-    pairs_[0].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+    pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
     if (!shadow_) {
         hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
         state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
-        info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
     }
     in.wavefront.set_uniforms(p);
-    set_source(p, Source{false, first, 0, 0, 0});
+    set_source(p, Source{false, first, 0, 0, 0, 0});
     p.set("rh_count", count);
     p.set("rh_group_first", unsigned(in.first + group_.first));
     p.set("rh_batch_first", unsigned(in.first));
@@ -393,23 +500,21 @@ void GpuRayHierarchy::leaf_dispatch(std::uint32_t first, std::uint32_t count) {
 void GpuRayHierarchy::prune_hits() {
     const std::uint32_t used = read_info(1);
     ++prunes;
-    Buffer& flags = counts_[0];
-    Buffer& offsets = offsets_[0];
-    flags.reserve(hit_capacity_ * 4);
-    offsets.reserve(hit_capacity_ * 4);
+    prune_flags_.reserve(hit_capacity_ * 4);
+    prune_offsets_.reserve(hit_capacity_ * 4);
     hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
     state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
     info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
-    flags.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    prune_flags_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
     fold_.set("rh_mode", 4u);
     fold_.set("rh_count", used);
     fold_.dispatch_threads(used);
     barrier();
-    compaction_.scan().exclusive_flags(flags, offsets, used, &info_, 4);   // the kept count becomes the list length
+    compaction_.scan().exclusive_flags(prune_flags_, prune_offsets_, used, &info_, 4);   // the kept count: the length
     hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
     state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
     info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
-    offsets.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    prune_offsets_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
     hits_tmp_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
     fold_.set("rh_mode", 5u);
     fold_.dispatch_threads(used);
@@ -451,6 +556,7 @@ void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
     barrier();
     std::uint32_t info[8];
     info_.download(info, sizeof info);
+    ++syncs;
     for (int k = 0; k < 4; ++k) stats[k].fold_tests += info[4 + k];
 }
 

@@ -5,13 +5,16 @@
 //
 //   build     rh_build.comp, one dispatch per level: node j of level l bounds children [jB, (j+1)B) of level l - 1
 //             (level 0 = the rays). --levels limits how many levels are built above the rays.
-//   traverse  candidate pairs (node, triangle) of the top level (all of them, implicitly), or first (node, object)
-//             with --object-culling; per chunk of pairs: rh_test.comp (the cone+sphere test; each survivor counts
-//             its children), the shared exclusive scan (common/gpu/scan.h), rh_expand.comp writing the survivors'
-//             (child, triangle) pairs, window by window, and down to the next level (depth first over chunks). The
-//             scan runs over the sums of work groups of 64 pairs; rh_expand.comp adds the offsets inside a group.
-//   local     rh_leaf.comp, the exact ray/triangle test on every (ray, triangle) pair that reached the leaves; for
-//             closest hits then rh_fold.comp (rh_closest.glsl: brute force's exact hit).
+//   objects   per frame (prepare): the triangles' bounding spheres and, with --objects tree, the object tree over
+//             them (object_tree.h: Morton codes, the shared radix sort, clusters, levels; shaders/ot_build.comp).
+//   traverse  candidate pairs (ray side, object side) (rh_pairs.glsl): the top ray level against every top item
+//             (triangles, mesh objects or the tree's root), implicitly; per chunk of pairs: rh_test.comp (the
+//             cone+sphere test; each survivor splits one side and counts its children), the shared exclusive scan
+//             (common/gpu/scan.h), rh_expand.comp writing the children pairs, window by window, each window traced
+//             on before the next (depth first over steps). The scan runs over the sums of work groups of 64 pairs;
+//             rh_expand.comp adds the offsets inside a group.
+//   local     rh_leaf.comp, on every (ray, triangle) pair a step leaves: the ray against the triangle's sphere, then
+//             the exact ray/triangle test; for closest hits then rh_fold.comp (rh_closest.glsl: brute force's hit).
 //
 // Every buffer holds at most `capacity()` entries (from the storage limit, Wavefront::storage_limit()): chunks and
 // windows are sized so that none overflows, so a pair is never dropped, however many survive.
@@ -19,21 +22,25 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common/gpu/buffer.h"
 #include "common/gpu/gpu_scene.h"
+#include "common/gpu/radix_sort.h"
 #include "common/gpu/scan.h"
 #include "common/gpu/shader.h"
 #include "common/gpu/wavefront.h"
+#include "common/scene/scene.h"
+#include "object_tree.h"
 
 namespace rt {
 
 struct HierarchyOptions {
     int branching = 4;          // --branching: 4, 8 or 16 children per node
     int levels = 0;             // --levels: upper levels used (0 = up to a single root)
-    bool object_culling = true; // --object-culling: test top nodes against objects before their triangles
+    ObjectMode objects = ObjectMode::tree;   // --objects: what the top ray nodes meet (object_tree.h)
     std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
     int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
 };
@@ -51,19 +58,23 @@ struct HierarchyLevelStats {
 };
 struct HierarchyKindStats {
     std::uint64_t rays = 0, groups = 0;
-    std::uint64_t object_pairs_in = 0, object_pairs_out = 0;   // the object level (--object-culling)
-    std::vector<HierarchyLevelStats> levels;                  // [0] = leaves (pairs_in = local tests), [1..] nodes
-    std::uint64_t local_tests = 0;     // exact tests at the leaves
+    std::uint64_t object_pairs_in = 0, object_pairs_out = 0;   // pairs tested whose object side is an object node
+    // Per ray level, the pairs tested whose ray side is on it: [0] = single rays (against object nodes and, in
+    // sphere tests, triangles), [1..] nodes.
+    std::vector<HierarchyLevelStats> levels;
+    std::uint64_t sphere_tests = 0;    // the per-ray test of (ray, triangle) pairs before the exact one
+    std::uint64_t local_tests = 0;     // exact ray/triangle tests at the leaves (the pairs that passed it)
     std::uint64_t fold_tests = 0;      // the closest-hit fold's re-tests (rh_closest.glsl)
     std::uint64_t brute_force_tests = 0;   // rays x triangles
-    std::uint64_t node_tests() const;
+    std::uint64_t node_tests() const;   // every cone+sphere test but the sphere tests
 };
 
 class GpuRayHierarchy {
 public:
     GpuRayHierarchy();
-    // Per frame: the triangles' and objects' bounding spheres (the only per-frame work on the geometry).
-    void prepare(const gpu::GpuScene& scene, const std::vector<ObjectRange>& objects);
+    // Per frame: the triangles' bounding spheres, and the objects of options.objects (mesh runs from `objects`, or
+    // the tree, built over the scene box `bounds`): the only per-frame work on the geometry.
+    void prepare(const gpu::GpuScene& scene, const std::vector<ObjectRange>& objects, const Bounds& bounds);
     // One batch of the pipeline: closest hits (trace) or occlusion (shadow) for every ray of it.
     void trace(const gpu::BatchTraceInputs& in, bool shadow);
 
@@ -71,8 +82,15 @@ public:
     gpu::GpuTimer* timer = nullptr;   // phases "rh_build", "rh_traverse", "rh_local" (per kind: "rh_build.shadow" ...)
     // Stats since reset_stats(), indexed by RayKind (0 = primary, unused).
     std::array<HierarchyKindStats, 4> stats;
-    void reset_stats() { stats = {}; }
+    void reset_stats() {
+        stats = {};
+        fold_rounds = prunes = chunks = windows = syncs = 0;
+    }
     std::uint64_t fold_rounds = 0, prunes = 0, chunks = 0, windows = 0;
+    std::uint64_t syncs = 0;   // GPU -> CPU read-backs since reset_stats() (each waits for the GPU)
+    // The object tree of the last prepare(): levels above the triangles and nodes (0 without a tree).
+    std::uint32_t object_levels() const { return std::uint32_t(object_level_count_.size()); }
+    std::size_t object_nodes() const { return object_nodes_; }
     // Entries per buffer (pairs, hits, counts) for the current storage limit.
     std::size_t capacity() const { return capacity_; }
     // Programs compiled for the current variant.
@@ -81,7 +99,7 @@ public:
 private:
     struct Source {        // a chunk of candidate pairs (rh_pairs.glsl)
         bool implicit = true;
-        std::uint32_t pair_first = 0, node_first = 0, item_first = 0, item_count = 0;
+        std::uint32_t pair_first = 0, node_first = 0, item_first = 0, item_count = 0, item_flag = 0;
     };
     struct Group {
         std::uint32_t first = 0, count = 0;   // rays [first, first + count) of the batch
@@ -91,23 +109,28 @@ private:
     std::vector<Group> find_groups(const gpu::BatchTraceInputs& in);
     int build(const gpu::BatchTraceInputs& in, const Group& g);
     void traverse(int top);
-    void test_chunk(int level, const Source& src, std::uint32_t count, bool objects);
-    void leaves(std::uint32_t count);
-    void leaf_dispatch(std::uint32_t first, std::uint32_t count);
+    void build_tree(const Bounds& bounds);
+    void test_chunk(int step, const Source& src, std::uint32_t count);
+    void leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs);
+    void read_group_counts();
+    void leaf_dispatch(int step, std::uint32_t first, std::uint32_t count);
     void prune_hits();
     void fold(const gpu::BatchTraceInputs& in);
     void set_source(const gpu::Program& p, const Source& s) const;
-    void level_buffers(int index);
-    std::uint32_t read_info(int index) const;
+    void step_buffers(int step, std::size_t pairs);
+    std::uint32_t read_info(int index);
     std::string phase(const char* name) const;
 
     std::string key_;
-    gpu::Program spheres_, build_, heads_, test_, expand_, leaf_closest_, leaf_shadow_, fold_;
+    gpu::Program spheres_, tree_, build_, heads_, test_, expand_, leaf_closest_, leaf_shadow_, fold_;
     gpu::Compaction compaction_;
-    gpu::Buffer spheres_buf_, objects_buf_, nodes_, info_, group_sums_, group_heads_, group_count_, state_, hits_, hits_tmp_;
-    std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per level index (0 = leaves; top + 1 = objects)
-    std::vector<std::uint32_t> level_first_, level_nodes_;
-    std::size_t triangles_ = 0, objects_ = 0, capacity_ = 0, hit_capacity_ = 0;
+    std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
+    gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_sums_, group_heads_, group_count_,
+        head_flags_, state_, hits_, hits_tmp_, prune_flags_, prune_offsets_;
+    std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per step of the depth-first traversal (0 = the top)
+    std::vector<std::uint32_t> level_first_, level_nodes_;   // the ray hierarchy's levels (level 0 = the rays)
+    std::vector<std::uint32_t> object_level_first_, object_level_count_;   // the object tree's (level 1 first)
+    std::size_t triangles_ = 0, objects_ = 0, object_nodes_ = 0, capacity_ = 0, hit_capacity_ = 0;
     std::uint64_t pending_tests_ = 0;   // leaf tests not yet added to the test counter
     std::uint64_t hits_bound_ = 0;    // an upper bound of the hit list's length (read back when it may be full)
     // The batch being traced.

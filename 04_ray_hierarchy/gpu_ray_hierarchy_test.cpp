@@ -202,10 +202,11 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
     }
     const gpu::Buffer ray_buffer = gpu::Buffer::from(rays);
     gpu::Buffer results(rays.size() * sizeof(gpu::WavefrontTraceResult));
-    for (const HierarchyOptions o : {HierarchyOptions{4, 0, true}, HierarchyOptions{16, 2, false}}) {
+    for (const HierarchyOptions o : {HierarchyOptions{4, 0, ObjectMode::tree}, HierarchyOptions{4, 0, ObjectMode::meshes},
+                                     HierarchyOptions{16, 2, ObjectMode::triangles}, HierarchyOptions{8, 2, ObjectMode::tree}}) {
         GpuRayHierarchy h;
         h.options = o;
-        h.prepare(gpu_scene, object_ranges(scene.material_ids));
+        h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
         h.trace({ray_buffer, 0, 1000, results, nullptr, wavefront}, false);
         const auto closest = results.download<gpu::WavefrontTraceResult>(1000);
         h.trace({ray_buffer, 1000, 500, results, nullptr, wavefront}, true);
@@ -279,11 +280,14 @@ TEST(RayHierarchyRenderer, CornellEqualsStage02ForEveryBranchingAndALevelLimit) 
     const RenderSettings settings = small_settings(s);
     HybridRenderer stage02;
     const FrameResult reference = stage02.render(s, settings);
-    for (const HierarchyOptions o : {HierarchyOptions{4, 0, true}, HierarchyOptions{8, 0, true},
-                                     HierarchyOptions{16, 0, true}, HierarchyOptions{8, 2, true},
-                                     HierarchyOptions{4, 1, false}}) {
+    for (const HierarchyOptions o :
+         {HierarchyOptions{4, 0, ObjectMode::tree}, HierarchyOptions{8, 0, ObjectMode::tree},
+          HierarchyOptions{16, 0, ObjectMode::tree}, HierarchyOptions{8, 2, ObjectMode::tree},
+          HierarchyOptions{4, 0, ObjectMode::meshes}, HierarchyOptions{8, 2, ObjectMode::meshes},
+          HierarchyOptions{4, 1, ObjectMode::triangles}}) {
         const FrameResult r = render_rh(s, settings, o);
-        const std::string what = "B=" + std::to_string(o.branching) + " levels " + std::to_string(o.levels);
+        const std::string what = "B=" + std::to_string(o.branching) + " levels " + std::to_string(o.levels) + " " +
+                                 object_mode_name(o.objects);
         expect_same_frame(r, reference, what);
         const auto& refl = r.extra["ray_hierarchy"]["kinds"]["reflection"];
         // At 64x48 neighbouring rays diverge: B = 4 still skips most tests, B = 16 fewer (see README.md).
@@ -305,9 +309,9 @@ TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
     }
 }
 
-// The stats add up, on one group of rays (one hierarchy): the top level tests every node with every triangle (no
-// object culling), each level's pairs come from the survivors above (at most B each), the leaves' pairs are the
-// local tests, and the percentage is theirs.
+// The stats add up, on one group of rays (one hierarchy): with --objects triangles the top level tests every node
+// with every triangle, each level's pairs come from the survivors above (at most B each), the leaves' pairs get the
+// sphere test and its survivors are the local tests.
 TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
     gpu::test_context();
     const Scene scene = scene_at("cornell");
@@ -333,8 +337,8 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
     gpu::Buffer results(rays.size() * sizeof(gpu::WavefrontTraceResult));
     for (int b : {4, 8, 16}) {
         GpuRayHierarchy h;
-        h.options = HierarchyOptions{b, 0, false};
-        h.prepare(gpu_scene, object_ranges(scene.material_ids));
+        h.options = HierarchyOptions{b, 0, ObjectMode::triangles};
+        h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
         h.trace({ray_buffer, 0, rays.size(), results, nullptr, wavefront}, false);
         const HierarchyKindStats& k = h.stats[2];
         ASSERT_EQ(k.groups, 1u);
@@ -348,8 +352,12 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
             EXPECT_GE(k.levels[l - 1].pairs_in, k.levels[l].pairs_out) << "B=" << b << " level " << l;
             node_tests += k.levels[l].pairs_in;
         }
+        // Level 0's pairs are the (ray, triangle) pairs: each gets the sphere test, and those that pass it the
+        // exact test.
+        EXPECT_EQ(k.sphere_tests, k.levels[0].pairs_in);
         EXPECT_EQ(k.node_tests(), node_tests);
-        EXPECT_EQ(k.local_tests, k.levels[0].pairs_in);
+        EXPECT_EQ(k.local_tests, k.levels[0].pairs_out);
+        EXPECT_LE(k.local_tests, k.sphere_tests);
         EXPECT_EQ(k.brute_force_tests, rays.size() * scene.triangle_count());
         EXPECT_LT(k.local_tests * 10, k.brute_force_tests) << "B=" << b;   // a coherent beam culls well
     }

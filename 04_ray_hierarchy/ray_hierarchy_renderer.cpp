@@ -26,9 +26,16 @@ void RayHierarchyRenderer::add_options(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(0, 32));
     app.add_option_function<std::string>(
-           "--object-culling", [this](const std::string& s) { hierarchy_options.object_culling = s == "on"; },
-           "Test the top nodes against whole objects before their triangles: on (default) or off")
-        ->check(CLI::IsMember({"on", "off"}));
+           "--objects",
+           [this](const std::string& s) {
+               hierarchy_options.objects = s == "triangles" ? ObjectMode::triangles
+                                           : s == "meshes"  ? ObjectMode::meshes
+                                                            : ObjectMode::tree;
+           },
+           "What the top ray nodes meet: tree (default: a tree of bounding spheres over the triangles, rebuilt each "
+           "frame), meshes (runs of one material, then their triangles: Reis) or triangles (every triangle: Roger et "
+           "al. 2007)")
+        ->check(CLI::IsMember({"tree", "meshes", "triangles"}));
 }
 
 void RayHierarchyRenderer::build(const Scene& scene, const RenderSettings&) {
@@ -37,9 +44,9 @@ void RayHierarchyRenderer::build(const Scene& scene, const RenderSettings&) {
     hierarchy_->timer = &timer();
     hierarchy_->reset_stats();
     traced_ = false;
-    // The only per-frame work on the geometry: the triangles' and objects' bounding spheres.
+    // The only per-frame work on the geometry: the triangles' bounding spheres and the objects (the tree).
     auto scope = timer().scope("build");
-    hierarchy_->prepare(gpu_scene(), object_ranges(scene.material_ids));
+    hierarchy_->prepare(gpu_scene(), object_ranges(scene.material_ids), scene.bounds);
 }
 
 void RayHierarchyRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
@@ -61,7 +68,13 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     const HierarchyOptions& o = hierarchy_options;
     nlohmann::json rh = {{"branching", o.branching},
                          {"levels_limit", o.levels},
-                         {"object_culling", o.object_culling},
+                         {"objects", object_mode_name(o.objects)},
+                         {"object_tree",
+                          {{"levels", hierarchy_->object_levels()},
+                           {"nodes", hierarchy_->object_nodes()},
+                           {"cluster_size", o.objects == ObjectMode::tree ? kClusterSize : 0u},
+                           {"branching", o.objects == ObjectMode::tree ? kObjectBranching : 0u}}},
+                         {"gpu_cpu_syncs", hierarchy_->syncs},
                          {"traced", traced_},
                          {"pair_capacity", hierarchy_->capacity()},
                          {"chunks", hierarchy_->chunks},
@@ -80,9 +93,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
             levels.push_back({{"level", l},
                               {"nodes", L.nodes},
                               {"pairs_in", L.pairs_in},
-                              {"pairs_out", l == 0 ? nlohmann::json(nullptr) : nlohmann::json(L.pairs_out)},
-                              {"node_tests", l == 0 ? 0 : L.pairs_in},
-                              {"local_tests", l == 0 ? L.pairs_in : 0}});
+                              {"pairs_out", L.pairs_out}});
         }
         const std::uint64_t tests = s.local_tests + s.fold_tests;
         const std::string kind = kKindNames[k];
@@ -92,6 +103,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
             {"levels", levels},
             {"object_level", {{"pairs_in", s.object_pairs_in}, {"pairs_out", s.object_pairs_out}}},
             {"node_tests", s.node_tests()},
+            {"sphere_tests", s.sphere_tests},
             {"local_tests", s.local_tests},
             {"fold_tests", s.fold_tests},
             {"tests_per_ray", double(tests) / double(s.rays)},

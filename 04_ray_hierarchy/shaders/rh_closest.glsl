@@ -10,6 +10,8 @@
 // With cut-outs, step 1 lists only opaque hits (rh_leaf.comp applies opacity.glsl). Step 2 needs no opacity test of
 // its own: it tests only listed triangles again, and a test gives the same u, v whatever tmax lets it through, so a
 // listed hit stays opaque; brute force over the opaque hits is what the fold replays.
+#include "rh_info.glsl"
+
 #define RH_TIE_RANGE 1e-5
 
 struct RhRayState {
@@ -24,7 +26,6 @@ struct RhRayState {
 // A listed hit: the ray (index in the batch), the triangle, the bits of t.
 layout(std430, binding = RH_BINDING_HITS) buffer Hits { uvec4 rh_hits[]; };
 layout(std430, binding = RH_BINDING_STATE) buffer State { RhRayState rh_state[]; };
-layout(std430, binding = RH_BINDING_INFO) buffer Info { uint rh_info[]; };
 
 bool rh_near(float t, uint min_t) {
     precise float reach = uintBitsToFloat(min_t) * (1.0 + RH_TIE_RANGE);

@@ -18,6 +18,8 @@
 #define RH_BINDING_OFFSETS (WF_BINDING_TRAVERSAL_FIRST + 6)   // uint[] exclusive scan of the work groups' sums
 #define RH_BINDING_INFO (WF_BINDING_TRAVERSAL_FIRST + 7)      // uint[8]: survivors, hit-list size, fold flag,
                                                               // scan total, fold tests per ray kind
+#define RH_BINDING_ORDER RH_BINDING_NODES                     // expansion, tree build: triangle ids in leaf order
+#define RH_BINDING_KEYS RH_BINDING_PAIRS                      // tree build: Morton codes
 #define RH_BINDING_GROUP_SUMS RH_BINDING_PAIRS_OUT            // test pass: each work group's sum of counts
 #define RH_BINDING_HITS RH_BINDING_PAIRS_OUT                  // leaf and fold passes: the hit list
 #define RH_BINDING_STATE RH_BINDING_COUNTS                    // leaf and fold passes: per-ray closest-hit state
@@ -33,9 +35,11 @@ struct RhNode {
     vec4 cone;     // unit axis, spread angle in radians (>= RH_ALL_DIRECTIONS: every direction)
 };
 
+// An object node (object_tree.h, ObjectNode). Level 1 bounds triangles rh_order[first + k] (meshes: first + k);
+// level l > 1 bounds object nodes [first, first + count) of level l - 1.
 struct RhObject {
-    vec4 sphere;   // bounds the spheres of triangles [first, first + count)
-    uint first, count, pad0, pad1;
+    vec4 sphere;
+    uint first, count, level, pad;
 };
 
 float rh_max_abs(vec3 v) { return max(abs(v.x), max(abs(v.y), abs(v.z))); }
@@ -138,4 +142,43 @@ bool rh_may_hit(RhNode node, vec4 s) {
     return !far;
     // STUB: return false;
     // END EXERCISE
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The pairs of the traversal (object_tree.h): uvec2(ray side, object side).
+//  - ray side: level << 27 | index on that level (level 0: the ray's index in its group; l >= 1: a node);
+//  - object side: RH_TRIANGLE_FLAG | triangle id, or the index of an object node.
+#define RH_TRIANGLE_FLAG 0x80000000u
+#define RH_RAY_INDEX_BITS 27u
+#define RH_RAY_INDEX_MASK 0x07ffffffu
+
+uint rh_ray_level(uint x) { return x >> RH_RAY_INDEX_BITS; }
+uint rh_ray_index(uint x) { return x & RH_RAY_INDEX_MASK; }
+uint rh_ray_side(uint level, uint index) { return level << RH_RAY_INDEX_BITS | index; }
+bool rh_is_triangle(uint y) { return (y & RH_TRIANGLE_FLAG) != 0u; }
+
+// The cheap per-ray test before the exact one (object_tree.cpp: rh_ray_may_hit): rh_may_hit for a single ray
+// (spread 0: no trigonometry), and the ray's length (a sphere farther than tmax |d| is out of reach).
+bool rh_ray_may_hit(vec3 origin, vec3 direction, float tmax, vec4 s) {
+    const float m = rh_max_abs(direction);
+    if (!rh_finite(origin) || !rh_finite(direction) || !(m > 0.0)) return false;
+    const vec3 axis = normalize(direction / m);
+    const vec3 q = s.xyz - origin;
+    const float q_len = length(q);
+    const float margin = RH_PAD * (q_len + s.w + rh_max_abs(origin) + rh_max_abs(s.xyz));
+    const float A = dot(q, axis);
+    const float B = length(cross(q, axis));
+    const float dist = A <= 0.0 ? q_len : B;
+    if (dist > s.w + margin) return false;   // A <= 0: the origin is the ray's nearest point to the centre
+    const float len = m * length(direction / m);   // |d| without overflow or underflow
+    return !(q_len - s.w - margin > tmax * len * (1.0 + RH_PAD));
+}
+
+// --objects tree: split the rays of a surviving pair when their beam is wider than the object node where it meets
+// it, else the object node (object_tree.h: rh_split_rays). Either choice is exact.
+bool rh_split_rays(RhNode node, vec4 s) {
+    if (node.cone.w >= RH_ALL_DIRECTIONS) return true;
+    const float distance = length(s.xyz - node.sphere.xyz);
+    const float width = node.sphere.w + distance * sin(min(node.cone.w, 1.57079637));
+    return width > s.w;
 }

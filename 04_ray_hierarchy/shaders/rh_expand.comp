@@ -1,15 +1,17 @@
 #version 450 core
-// Expansion of the surviving pairs of a chunk: pair i writes its n pairs (its node's children with the same
-// triangle, or its object's triangles with the same node) to outputs [o, o + n), where o is its work group's offset
-// (the exclusive scan of the groups' sums) plus its place in the group (both n and the place from rh_test.comp).
-// Only outputs inside the window [rh_window_first, + rh_window_count) are written: windows keep each output within
-// one buffer, so any number of survivors is expanded (in several windows) and no pair is ever dropped. A thread
-// writes at most B (16) children, or one object's triangles (at most 4096: the loop limit of docs/gpu.md).
+// Expansion of the surviving pairs of a chunk: pair i writes its n pairs to outputs [o, o + n), where o is its work
+// group's offset (the exclusive scan of the groups' sums) plus its place in the group (both n and the place from
+// rh_test.comp). The side rh_test.comp chose is split: the ray node's children with the same object side, or the
+// object node's children (object nodes, or a leaf's triangles) with the same ray side. Only outputs inside the
+// window [rh_window_first, + rh_window_count) are written: windows keep each output within one buffer, so any
+// number of survivors is expanded (in several windows) and no pair is ever dropped. A thread writes at most B (16)
+// children, or one mesh object's triangles (at most 4096: the loop limit of docs/gpu.md).
 #include "rh_common.glsl"
 #include "rh_pairs.glsl"
 
 layout(local_size_x = 64) in;
 
+layout(std430, binding = RH_BINDING_ORDER) readonly buffer Order { uint rh_order[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject rh_objects[]; };
 layout(std430, binding = RH_BINDING_PAIRS_OUT) writeonly buffer PairsOut { uvec2 rh_pairs_out[]; };
 layout(std430, binding = RH_BINDING_COUNTS) readonly buffer Counts { uint rh_counts[]; };
@@ -18,7 +20,7 @@ layout(std430, binding = RH_BINDING_OFFSETS) readonly buffer Offsets { uint rh_g
 uniform uint rh_count;           // pairs tested in the chunk
 uniform uint rh_window_first, rh_window_count;
 uniform uint rh_branching;
-uniform uint rh_objects_mode;
+uniform uint rh_identity_order;  // 1: level-1 objects hold triangles first + k (meshes), 0: rh_order[first + k]
 
 void main() {
     const uint i = rt_global_index();
@@ -26,14 +28,21 @@ void main() {
     const uint word = rh_counts[i];
     const uint n = word & 0x1fffu;
     if (n == 0u) return;
-    const uint base = rh_group_offsets[rt_group_index()] + (word >> 13);
+    const uint base = rh_group_offsets[rt_group_index()] + ((word >> 13) & 0x3ffffu);
     const uint first = max(base, rh_window_first), last = min(base + n, rh_window_first + rh_window_count);
     if (first >= last) return;
     const uvec2 p = rh_pair(i);
-    const uint object_first = rh_objects_mode == 1u ? rh_objects[p.y].first : 0u;
-    for (uint g = first; g < last; ++g) {
-        const uint child = g - base;
-        rh_pairs_out[g - rh_window_first] = rh_objects_mode == 1u ? uvec2(p.x, object_first + child)
-                                                                 : uvec2(p.x * rh_branching + child, p.y);
+    if ((word >> 31) == 1u) {
+        const RhObject o = rh_objects[p.y];
+        for (uint g = first; g < last; ++g) {
+            const uint child = o.first + (g - base);
+            const uint y = o.level > 1u ? child
+                                        : RH_TRIANGLE_FLAG | (rh_identity_order == 1u ? child : rh_order[child]);
+            rh_pairs_out[g - rh_window_first] = uvec2(p.x, y);
+        }
+    } else {
+        const uint level = rh_ray_level(p.x) - 1u, index = rh_ray_index(p.x) * rh_branching;
+        for (uint g = first; g < last; ++g)
+            rh_pairs_out[g - rh_window_first] = uvec2(rh_ray_side(level, index + (g - base)), p.y);
     }
 }

@@ -1,12 +1,15 @@
 #version 450 core
-// The leaves: the exact ray/triangle test (common/shaders/intersect.glsl, as brute force) on each surviving
-// (ray, triangle) pair of a chunk. Shadow rays (RH_SHADOW): any hit blocks the light. Closest hits: step 1 of
-// rh_closest.glsl. The chunk's tests are added to the global counter once, by the CPU, which knows their number
-// (rh_fold.comp, mode 6), not by an atomic per pair; only the heatmap needs one per pair, on the ray's pixel.
+// The leaves: each (ray, triangle) pair of a chunk (the other pairs of the chunk are rh_test.comp's) gets the cheap
+// per-ray test first, the ray against the triangle's bounding sphere (rh_ray_may_hit; the sphere is computed from
+// the vertices here, as rh_spheres.comp does, so no buffer more is bound), and only then the exact ray/triangle test
+// (common/shaders/intersect.glsl, as brute force). Shadow rays (RH_SHADOW): any hit blocks the light. Closest hits:
+// step 1 of rh_closest.glsl. Each work group adds its exact tests to rh_info once (the CPU adds the batch's to the
+// pipeline's test counter, rh_fold.comp mode 6); only the heatmap needs one atomic per test, on the ray's pixel.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 #include "rh_pairs.glsl"
 #include "opacity.glsl"
+#include "rh_info.glsl"
 #ifndef RH_SHADOW
 #include "rh_closest.glsl"
 #endif
@@ -21,27 +24,40 @@ uniform uint rh_count;          // pairs in the chunk
 uniform uint rh_group_first;    // wf_rays_in index of the group's ray 0
 uniform uint rh_batch_first;    // wf_rays_in index of the batch's ray 0 (results and state are per batch ray)
 
+shared uint rh_group_exact;
+
 void main() {
+    if (gl_LocalInvocationIndex == 0u) rh_group_exact = 0u;
+    barrier();
     const uint i = rt_global_index();
-    if (i >= rh_count) return;
-    const uvec2 p = rh_pair(i);
-    const uint ray_index = rh_group_first + p.x;
-    const WavefrontRay r = wf_rays_in[ray_index];
-    const uint slot = ray_index - rh_batch_first;
-    vec3 a, b, c;
-    rh_load_triangle(p.y, a, b, c);
-    float t, u, v;
-    const bool hit = intersect_triangle(RT_INTERSECT_METHOD, wf_ray(r), a, b, c, t, u, v) && cutout_opaque(p.y, u, v);
+    const uvec2 p = i < rh_count ? rh_pair(i) : uvec2(0xffffffffu, 0u);
+    if (rh_ray_level(p.x) == 0u && rh_is_triangle(p.y)) {
+        const uint ray_index = rh_group_first + rh_ray_index(p.x);
+        const uint triangle = p.y & ~RH_TRIANGLE_FLAG;
+        const WavefrontRay r = wf_rays_in[ray_index];
+        const uint slot = ray_index - rh_batch_first;
+        vec3 a, b, c;
+        rh_load_triangle(triangle, a, b, c);
+        if (rh_ray_may_hit(r.origin, r.direction, r.tmax, rh_triangle_sphere(a, b, c))) {
+            atomicAdd(rh_group_exact, 1u);
+            float t, u, v;
+            const bool hit =
+                intersect_triangle(RT_INTERSECT_METHOD, wf_ray(r), a, b, c, t, u, v) && cutout_opaque(triangle, u, v);
 #ifdef RH_SHADOW
-    if (hit) rh_occluded[slot] = 1u;
+            if (hit) rh_occluded[slot] = 1u;
 #else
-    if (hit) {
-        const uint bits = floatBitsToUint(t);
-        const uint before = atomicMin(rh_state[slot].min_t, bits);
-        if (rh_near(t, min(before, bits))) rh_hits[atomicAdd(rh_info[1], 1u)] = uvec4(slot, p.y, bits, 0u);
-    }
+            if (hit) {
+                const uint bits = floatBitsToUint(t);
+                const uint before = atomicMin(rh_state[slot].min_t, bits);
+                if (rh_near(t, min(before, bits)))
+                    rh_hits[atomicAdd(rh_info[RH_INFO_HITS], 1u)] = uvec4(slot, triangle, bits, 0u);
+            }
 #endif
 #if defined(COUNT_TESTS) && defined(RECORD_TESTS_PER_PIXEL)
-    if (r.pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[r.pixel], 1u);
+            if (r.pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[r.pixel], 1u);
 #endif
+        }
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u) rh_add64(RH_INFO_EXACT, rh_group_exact);
 }

@@ -1,13 +1,19 @@
 #version 450 core
-// The conservative test of one chunk of candidate pairs (node, item) at one level (rh_may_hit, rh_common.glsl):
-// writes for each pair how many pairs it expands to (0 when rejected): the node's children with the same triangle,
-// or, for an object, the object's triangles with the same node. Each work group of 64 pairs also writes its total:
+// The conservative test of one chunk of candidate pairs (ray side, object side) (rh_pairs.glsl), each on its own
+// levels: a ray node against an object node or a triangle (rh_may_hit), a single ray against an object node
+// (rh_ray_may_hit). A survivor splits one side (object_tree.h): the ray node into its children, or the object node
+// into its children (nodes, or a leaf's triangles); a triangle is never split, a single ray neither. (ray, triangle)
+// pairs are not tested here: rh_leaf.comp gives them the sphere test and the exact test.
+//
+// Writes for each pair how many pairs it expands to (0 when rejected), and each work group of 64 pairs its total:
 // the shared scan (common/gpu/scan.h) runs over these totals only, 64 times fewer values than pairs. A pair's place
 // inside its group comes from the shared-memory atomic that sums the group (in whatever order the threads run: the
-// order of pairs inside a group changes nothing the traversal computes, the hits, the occlusion or the counts).
-// rh_counts[i] packs the count (bits 0-12, at most 4096) and that place (bits 13-31, at most 63 x 4096).
+// order of pairs changes nothing the traversal computes, the hits, the occlusion or the counts).
+// rh_counts[i] packs the count (bits 0-12, at most 4096), that place (bits 13-30, at most 63 x 4096) and the side
+// split (bit 31: the object side).
 #include "rh_common.glsl"
 #include "rh_pairs.glsl"
+#include "rh_info.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -15,45 +21,77 @@ layout(std430, binding = RH_BINDING_NODES) readonly buffer Nodes { RhNode rh_nod
 layout(std430, binding = RH_BINDING_SPHERES) readonly buffer Spheres { vec4 rh_spheres[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject rh_objects[]; };
 layout(std430, binding = RH_BINDING_COUNTS) writeonly buffer Counts { uint rh_counts[]; };
-layout(std430, binding = RH_BINDING_INFO) buffer Info { uint rh_info[]; };
 layout(std430, binding = RH_BINDING_GROUP_SUMS) writeonly buffer GroupSums { uint rh_group_sums[]; };
 
-uniform uint rh_count;           // pairs in the chunk
-uniform uint rh_level_first;     // this level's node 0 in rh_nodes
-uniform uint rh_children;        // nodes (or rays) on the level below
+uniform uint rh_count;             // pairs in the chunk
+uniform uint rh_level_first[32];   // ray level l >= 1: its node 0 in rh_nodes
+uniform uint rh_level_nodes[32];   // nodes on ray level l (level 0: the group's rays)
+uniform uint rh_group_first;       // wf_rays_in index of the group's ray 0
 uniform uint rh_branching;
-uniform uint rh_objects_mode;    // 1: items are objects
+uniform uint rh_split_larger;      // 1 (--objects tree): split the larger side; 0: the object side first
 
-shared uint rh_group_survivors;   // summed in shared memory: one global atomic per work group, not per survivor
-shared uint rh_group_sum;
+shared uint rh_group_sum, rh_group_leaves;
+shared uint rh_level_in[32], rh_level_out[32];
+shared uint rh_object_in, rh_object_out;
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) {
-        rh_group_survivors = 0u;
+    const uint lane = gl_LocalInvocationIndex;
+    if (lane < 32u) {
+        rh_level_in[lane] = 0u;
+        rh_level_out[lane] = 0u;
+    }
+    if (lane == 0u) {
         rh_group_sum = 0u;
+        rh_group_leaves = 0u;
+        rh_object_in = 0u;
+        rh_object_out = 0u;
     }
     barrier();
     const uint i = rt_global_index();
     if (i < rh_count) {
         const uvec2 p = rh_pair(i);
-        const RhNode node = rh_nodes[rh_level_first + p.x];
-        uint n = 0u;
-        if (rh_objects_mode == 1u) {
-            const RhObject o = rh_objects[p.y];
-            if (rh_may_hit(node, o.sphere)) n = o.count;
-        } else if (rh_may_hit(node, rh_spheres[p.y])) {
-            n = min(rh_branching, rh_children - p.x * rh_branching);
+        const uint level = rh_ray_level(p.x), index = rh_ray_index(p.x);
+        const bool triangle = rh_is_triangle(p.y);
+        uint n = 0u, split_objects = 0u;
+        if (level == 0u && triangle) {
+            atomicAdd(rh_group_leaves, 1u);   // for rh_leaf.comp
+        } else {
+            const vec4 s = triangle ? rh_spheres[p.y & ~RH_TRIANGLE_FLAG] : rh_objects[p.y].sphere;
+            bool may_hit, split_rays = false;
+            if (level == 0u) {
+                const WavefrontRay r = wf_rays_in[rh_group_first + index];
+                may_hit = rh_ray_may_hit(r.origin, r.direction, r.tmax, s);
+            } else {
+                const RhNode node = rh_nodes[rh_level_first[level] + index];
+                may_hit = rh_may_hit(node, s);
+                split_rays = triangle || (rh_split_larger == 1u && rh_split_rays(node, s));
+            }
+            atomicAdd(rh_level_in[level], 1u);
+            if (!triangle) atomicAdd(rh_object_in, 1u);
+            if (may_hit) {
+                atomicAdd(rh_level_out[level], 1u);
+                if (!triangle) atomicAdd(rh_object_out, 1u);
+                if (split_rays) {
+                    n = min(rh_branching, rh_level_nodes[level - 1u] - index * rh_branching);
+                } else {
+                    n = rh_objects[p.y].count;
+                    split_objects = 1u;
+                }
+            }
         }
         uint place = 0u;
-        if (n > 0u) {
-            atomicAdd(rh_group_survivors, 1u);
-            place = atomicAdd(rh_group_sum, n);
-        }
-        rh_counts[i] = n | place << 13;
+        if (n > 0u) place = atomicAdd(rh_group_sum, n);
+        rh_counts[i] = n | place << 13 | split_objects << 31;
     }
     barrier();
-    if (gl_LocalInvocationIndex == 0u) {
+    if (lane == 0u) {
         rh_group_sums[rt_group_index()] = rh_group_sum;
-        if (rh_group_survivors > 0u) atomicAdd(rh_info[0], rh_group_survivors);
+        if (rh_group_leaves > 0u) atomicAdd(rh_info[RH_INFO_LEAVES], rh_group_leaves);
+        rh_add64(RH_INFO_OBJECT_IN, rh_object_in);
+        rh_add64(RH_INFO_OBJECT_OUT, rh_object_out);
+    }
+    if (lane < 32u) {
+        rh_add64(RH_INFO_LEVEL_IN + 2u * lane, rh_level_in[lane]);
+        rh_add64(RH_INFO_LEVEL_OUT + 2u * lane, rh_level_out[lane]);
     }
 }

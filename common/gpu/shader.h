@@ -103,6 +103,10 @@ public:
     void set(const char* name, const glm::ivec2& v) const { glProgramUniform2i(id_, uniform_location(name), v.x, v.y); }
     void set(const char* name, const glm::uvec2& v) const { glProgramUniform2ui(id_, uniform_location(name), v.x, v.y); }
     void set(const char* name, const glm::mat4& m) const;
+    // A uint array uniform (`uniform uint name[N]`), from element 0.
+    void set(const char* name, const std::vector<unsigned>& v) const {
+        glProgramUniform1uiv(id_, uniform_location(name), GLsizei(v.size()), v.data());
+    }
 
     // Compute programs: the local size declared in the shader.
     glm::uvec3 local_size() const { return local_size_; }

@@ -1,0 +1,216 @@
+#include "object_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace rt {
+
+namespace {
+constexpr std::uint32_t kTriangleFlag = 0x80000000u;   // rh_common.glsl: RH_TRIANGLE_FLAG
+float max_abs(glm::vec3 v) { return std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z))); }
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Bits 0..9 of v spread to every third bit (shaders/ot_build.comp: ot_spread_bits).
+std::uint32_t spread_bits(std::uint32_t v) {
+    v &= 0x3ffu;
+    v = (v | (v << 16)) & 0x030000ffu;
+    v = (v | (v << 8)) & 0x0300f00fu;
+    v = (v | (v << 4)) & 0x030c30c3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+std::uint32_t morton_cell(float x, float lo, float scale) {
+    const float f = (x - lo) * scale;
+    if (!(f >= 0.0f)) return 0;   // below the box, or NaN
+    if (f >= 1024.0f) return 1023;
+    return std::uint32_t(f);
+}
+
+void add_level(ObjectTree& tree, std::uint32_t count) {
+    tree.level_first.push_back(std::uint32_t(tree.nodes.size()));
+    tree.level_count.push_back(count);
+}
+}  // namespace
+
+const char* object_mode_name(ObjectMode mode) {
+    switch (mode) {
+    case ObjectMode::triangles: return "triangles";
+    case ObjectMode::meshes: return "meshes";
+    case ObjectMode::tree: return "tree";
+    }
+    return "?";
+}
+
+float morton_scale(glm::vec3 lo, glm::vec3 hi) {
+    const double extent = std::max({double(hi.x) - lo.x, double(hi.y) - lo.y, double(hi.z) - lo.z});
+    if (!(extent > 0.0) || !std::isfinite(extent)) return 0.0f;
+    const float scale = float(1024.0 / extent);
+    return std::isfinite(scale) ? scale : 0.0f;
+}
+
+std::uint32_t morton_code(glm::vec3 p, glm::vec3 lo, float scale) {
+    return spread_bits(morton_cell(p.x, lo.x, scale)) << 2 | spread_bits(morton_cell(p.y, lo.y, scale)) << 1 |
+           spread_bits(morton_cell(p.z, lo.z, scale));
+}
+
+// The box of the children's spheres, its middle, the largest reach from there; padded as rh_triangle_sphere
+// (shaders/ot_build.comp: ot_union).
+glm::vec4 sphere_union(const glm::vec4* s, std::size_t count) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (std::size_t k = 0; k < count; ++k) {
+        lo = glm::min(lo, glm::vec3(s[k]) - s[k].w);
+        hi = glm::max(hi, glm::vec3(s[k]) + s[k].w);
+    }
+    const glm::vec3 m = 0.5f * lo + 0.5f * hi;
+    float r = 0.0f;
+    for (std::size_t k = 0; k < count; ++k) r = std::max(r, glm::length(glm::vec3(s[k]) - m) + s[k].w);
+    return glm::vec4(m, r * (1.0f + kRhPad) + kRhPad * std::max(max_abs(m), max_abs(hi - lo)) + 1e-30f);
+}
+
+glm::vec4 sphere_union(const std::vector<glm::vec4>& spheres, const std::uint32_t* order, std::uint32_t first,
+                       std::uint32_t count) {
+    std::vector<glm::vec4> kids;
+    for (std::uint32_t k = 0; k < count; ++k) kids.push_back(spheres[order ? order[first + k] : first + k]);
+    return sphere_union(kids.data(), kids.size());
+}
+
+ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo, glm::vec3 hi) {
+    ObjectTree tree;
+    const std::uint32_t n = std::uint32_t(spheres.size());
+    tree.order.resize(n);
+    std::iota(tree.order.begin(), tree.order.end(), 0u);
+    if (n == 0) return tree;
+    const float scale = morton_scale(lo, hi);
+    std::vector<std::uint32_t> codes(n);
+    for (std::uint32_t i = 0; i < n; ++i) codes[i] = morton_code(glm::vec3(spheres[i]), lo, scale);
+    std::stable_sort(tree.order.begin(), tree.order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return codes[a] < codes[b]; });
+    // Level 1: clusters of consecutive sorted triangles.
+    add_level(tree, (n + kClusterSize - 1) / kClusterSize);
+    for (std::uint32_t j = 0; j < tree.level_count.back(); ++j) {
+        ObjectNode node;
+        node.first = j * kClusterSize;
+        node.count = std::min(kClusterSize, n - node.first);
+        node.level = 1;
+        node.sphere = sphere_union(spheres, tree.order.data(), node.first, node.count);
+        tree.nodes.push_back(node);
+    }
+    // Upper levels, up to a single root.
+    while (tree.level_count.back() > 1) {
+        const std::uint32_t below_first = tree.level_first.back(), below = tree.level_count.back();
+        const std::uint32_t level = tree.levels() + 1;
+        add_level(tree, (below + kObjectBranching - 1) / kObjectBranching);
+        for (std::uint32_t j = 0; j < tree.level_count.back(); ++j) {
+            ObjectNode node;
+            node.first = below_first + j * kObjectBranching;
+            node.count = std::min(kObjectBranching, below - j * kObjectBranching);
+            node.level = level;
+            std::vector<glm::vec4> kids;
+            for (std::uint32_t k = 0; k < node.count; ++k) kids.push_back(tree.nodes[node.first + k].sphere);
+            node.sphere = sphere_union(kids.data(), kids.size());
+            tree.nodes.push_back(node);
+        }
+    }
+    return tree;
+}
+
+ObjectTree mesh_objects(const std::vector<glm::vec4>& spheres,
+                        const std::vector<std::pair<std::uint32_t, std::uint32_t>>& runs) {
+    ObjectTree tree;
+    tree.order.resize(spheres.size());
+    std::iota(tree.order.begin(), tree.order.end(), 0u);
+    if (runs.empty()) return tree;
+    add_level(tree, std::uint32_t(runs.size()));
+    for (const auto& [first, count] : runs) {
+        ObjectNode node;
+        node.first = first;
+        node.count = count;
+        node.level = 1;
+        node.sphere = sphere_union(spheres, nullptr, first, count);
+        tree.nodes.push_back(node);
+    }
+    return tree;
+}
+
+bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4 s) {
+    const float m = max_abs(direction);
+    if (!finite(origin) || !finite(direction) || !(m > 0.0f)) return false;
+    const glm::vec3 axis = glm::normalize(direction / m);
+    const glm::vec3 centre(s);
+    const glm::vec3 q = centre - origin;
+    const float q_len = glm::length(q);
+    const float margin = kRhPad * (q_len + s.w + max_abs(origin) + max_abs(centre));
+    // rh_may_hit with spread 0: cos(0) = 1, sin(0) = 0.
+    const float A = glm::dot(q, axis);
+    const float B = glm::length(glm::cross(q, axis));
+    const float dist = A <= 0.0f ? q_len : B;
+    if (dist > s.w + margin) return false;   // A <= 0: the origin is the ray's nearest point to the centre
+    // Every point the ray reaches is within tmax |d| of its origin; the sphere's nearest point is |q| - radius away.
+    const float length = m * glm::length(direction / m);   // |d| without overflow or underflow
+    return !(q_len - s.w - margin > tmax * length * (1.0f + kRhPad));
+}
+
+bool rh_split_rays(const RhNode& node, glm::vec4 s) {
+    if (node.cone.w >= kRhAllDirections) return true;
+    const float distance = glm::length(glm::vec3(s) - glm::vec3(node.sphere));
+    const float width = node.sphere.w + distance * std::sin(std::min(node.cone.w, 1.57079637f));
+    return width > s.w;
+}
+
+PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vector<std::vector<RhNode>>& levels,
+                             int branching_factor, const std::vector<glm::vec4>& spheres, const ObjectTree& tree,
+                             ObjectMode mode) {
+    PairTraversal out;
+    if (levels.size() < 2 || spheres.empty()) return out;
+    const std::size_t branching = std::size_t(branching_factor);
+    struct Pair {
+        std::uint32_t level, index, object;
+    };
+    std::vector<Pair> stack;
+    const std::uint32_t top = std::uint32_t(levels.size() - 1);
+    for (std::uint32_t j = 0; j < levels[top].size(); ++j) {
+        if (mode == ObjectMode::triangles) {
+            for (std::uint32_t t = 0; t < spheres.size(); ++t) stack.push_back({top, j, kTriangleFlag | t});
+        } else if (tree.levels() > 0) {
+            const std::uint32_t L = tree.levels() - 1;
+            for (std::uint32_t k = 0; k < tree.level_count[L]; ++k) stack.push_back({top, j, tree.level_first[L] + k});
+        }
+    }
+    while (!stack.empty()) {
+        const Pair p = stack.back();
+        stack.pop_back();
+        const bool triangle = (p.object & kTriangleFlag) != 0;
+        const glm::vec4 sphere = triangle ? spheres[p.object & ~kTriangleFlag] : tree.nodes[p.object].sphere;
+        if (p.level == 0) {
+            const RhTraceRay& r = rays[p.index];
+            if (triangle) {
+                ++out.sphere_tests;
+                if (rh_ray_may_hit(r.origin, r.direction, r.tmax, sphere))
+                    out.exact.emplace_back(p.index, p.object & ~kTriangleFlag);
+                continue;
+            }
+            ++out.node_tests;
+            if (!rh_ray_may_hit(r.origin, r.direction, r.tmax, sphere)) continue;
+        } else {
+            ++out.node_tests;
+            if (!rh_may_hit(levels[p.level][p.index], sphere)) continue;
+        }
+        const bool split_rays =
+            triangle || (p.level > 0 && mode == ObjectMode::tree && rh_split_rays(levels[p.level][p.index], sphere));
+        if (split_rays) {
+            const std::size_t first = p.index * branching;
+            const std::size_t last = std::min(first + branching, levels[p.level - 1].size());
+            for (std::size_t k = first; k < last; ++k) stack.push_back({p.level - 1, std::uint32_t(k), p.object});
+        } else {
+            const ObjectNode& node = tree.nodes[p.object];
+            for (std::uint32_t k = 0; k < node.count; ++k)
+                stack.push_back({p.level, p.index,
+                                 node.level == 1 ? kTriangleFlag | tree.order[node.first + k] : node.first + k});
+        }
+    }
+    return out;
+}
+
+}  // namespace rt

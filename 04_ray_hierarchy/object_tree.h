@@ -1,0 +1,100 @@
+// The object side of stage 04's traversal: a tree of bounding spheres over the triangles, rebuilt every frame, so
+// that the ray hierarchy's nodes meet a few object nodes instead of every triangle. Roger et al. (2007) test the top
+// ray nodes against every triangle; Reis ("Exploring Ray-Space Hierarchy", closing section) names the way out: an
+// object-space hierarchy beside the ray-space one. The build is LBVH-style and cheap enough for every frame:
+//
+//   1. Morton code of each triangle's sphere centre in a grid of cubic cells over the scene box (10 bits per axis);
+//   2. the triangles sorted by code (the shared radix sort on the GPU; stable, so equal codes keep id order);
+//   3. level 1: clusters of kClusterSize consecutive sorted triangles; level l > 1: node j bounds nodes
+//      [j B, (j + 1) B) of level l - 1 (B = kObjectBranching), up to a single root. The same implicit layout as the
+//      ray hierarchy's levels, over space instead of over rays.
+//
+// The traversal then works on pairs (ray node, object node): a pair whose cone-swept sphere misses the object's
+// sphere is dropped for every ray and triangle below both; a surviving pair splits one side (the larger: see
+// rh_split_rays), until (ray, triangle) pairs remain. Those get the cheap per-ray test (rh_ray_may_hit: the ray
+// against the triangle's bounding sphere) and only then the exact ray/triangle test.
+//
+// --objects selects the published variants: `triangles` (Roger et al.: the top ray nodes against every triangle),
+// `meshes` (runs of one material as objects, each against the top nodes first: today's object culling, Reis's
+// scheme) and `tree` (this file; the default). The GPU twin is shaders/ot_build.comp and rh_test.comp.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "ray_hierarchy.h"
+
+namespace rt {
+
+enum class ObjectMode { triangles, meshes, tree };
+const char* object_mode_name(ObjectMode mode);
+
+constexpr std::uint32_t kClusterSize = 4;        // triangles per leaf of the tree
+constexpr std::uint32_t kObjectBranching = 4;    // children per node above the leaves
+constexpr unsigned kMortonAxisBits = 10;         // per axis: 2^30 cells
+
+// One object node, as on the GPU (std430 RhObject, 32 bytes). Level 1 nodes bound triangles: order[first + k] for
+// k < count (meshes: the identity order). Level l > 1 nodes bound nodes [first, first + count) of level l - 1.
+struct ObjectNode {
+    glm::vec4 sphere{0.0f};
+    std::uint32_t first = 0, count = 0, level = 1, pad = 0;
+};
+static_assert(sizeof(ObjectNode) == 32);
+
+struct ObjectTree {
+    std::vector<std::uint32_t> order;         // triangle ids in the leaves' order (Morton; identity for meshes)
+    std::vector<ObjectNode> nodes;            // level 1 first, then each level up; the last level holds the root(s)
+    std::vector<std::uint32_t> level_first;   // [l - 1]: index of level l's first node
+    std::vector<std::uint32_t> level_count;   // [l - 1]: nodes of level l
+    std::uint32_t levels() const { return std::uint32_t(level_count.size()); }
+};
+
+// Cells per unit of the cubic Morton grid over the box: 2^10 / (largest extent); 0 for an empty, flat-to-a-point or
+// non-finite box (every code is then 0 and the tree is the triangles in id order, still correct).
+float morton_scale(glm::vec3 lo, glm::vec3 hi);
+// 30-bit Morton code of p (x above y above z at each level), cells clamped to the grid; NaN goes to cell 0.
+std::uint32_t morton_code(glm::vec3 p, glm::vec3 lo, float scale);
+
+// The sphere bounding spheres s[first + k] (through `order` when given), padded like every bound of the stage.
+glm::vec4 sphere_union(const glm::vec4* spheres, std::size_t count);
+glm::vec4 sphere_union(const std::vector<glm::vec4>& spheres, const std::uint32_t* order, std::uint32_t first,
+                       std::uint32_t count);
+
+// The tree over triangles with these bounding spheres (rh_triangle_sphere), in the scene box [lo, hi].
+ObjectTree build_object_tree(const std::vector<glm::vec4>& triangle_spheres, glm::vec3 lo, glm::vec3 hi);
+// `meshes`: one level of objects, runs [first, first + count) of triangles in id order.
+ObjectTree mesh_objects(const std::vector<glm::vec4>& triangle_spheres,
+                        const std::vector<std::pair<std::uint32_t, std::uint32_t>>& runs);
+
+// The cheap per-ray test before the exact one: can the ray o + t d, 0 < t <= tmax, reach sphere s? rh_may_hit for
+// a single ray (spread 0, no trigonometry), plus the ray's length: a sphere farther than tmax |d| is out of reach
+// (shadow rays end at their light). Conservative in floats like rh_may_hit; false for a ray that cannot hit
+// anything (zero or non-finite direction or origin, as rh_leaf's empty leaf).
+bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4 sphere);
+
+// Which side of a surviving (ray node, object node) pair to split in `tree` mode: the rays when their beam is wider
+// than the object node where it meets it (sphere radius + distance x sin(spread), every direction: always), else the
+// object node. Either choice is exact; this one keeps both sides of a pair about the same size, as a dual-tree
+// traversal does.
+bool rh_split_rays(const RhNode& node, glm::vec4 object_sphere);
+
+// The whole pair traversal on the CPU, for the property tests: every (ray, triangle) pair that reaches the exact test,
+// given the ray hierarchy's levels (rh_build) and, for meshes and tree, the object tree. Counts as the GPU's stats.
+struct RhTraceRay {
+    glm::vec3 origin, direction;
+    float tmax = INFINITY;
+};
+struct PairTraversal {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> exact;   // (ray, triangle) pairs given the exact test
+    std::uint64_t node_tests = 0;     // cone+sphere tests of (ray node or ray, object node or triangle) pairs
+    std::uint64_t sphere_tests = 0;   // rh_ray_may_hit tests of (ray, triangle) pairs
+};
+PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vector<std::vector<RhNode>>& levels,
+                             int branching, const std::vector<glm::vec4>& triangle_spheres, const ObjectTree& tree,
+                             ObjectMode mode);
+
+}  // namespace rt

@@ -1,0 +1,254 @@
+// The object tree and the pair traversal on the CPU (object_tree.h): the tree's shape (every triangle in exactly one
+// leaf, every parent sphere holding its children, Morton order), and the traversal's one promise, on the
+// adversarial ray sets of ray_sets.h and on far-moved, tiny and degenerate scenes: no (ray, triangle) pair that the
+// exact test hits is ever culled, by a node test, an object node or the per-ray sphere test.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "common/trace/intersect.h"
+#include "object_tree.h"
+#include "ray_hierarchy.h"
+#include "ray_sets.h"
+
+namespace rt {
+namespace {
+
+std::vector<glm::vec4> spheres_of(const std::vector<glm::vec3>& v) {
+    std::vector<glm::vec4> s;
+    for (std::size_t i = 0; i + 2 < v.size(); i += 3) s.push_back(rh_triangle_sphere(v[i], v[i + 1], v[i + 2]));
+    return s;
+}
+
+void box_of(const std::vector<glm::vec3>& v, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(INFINITY);
+    hi = glm::vec3(-INFINITY);
+    for (const glm::vec3& p : v) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+}
+
+// In double: does sphere `outer` hold sphere `inner` (centre distance + inner radius <= outer radius)?
+bool holds(glm::vec4 outer, glm::vec4 inner) {
+    const double d = glm::length(glm::dvec3(glm::vec3(outer)) - glm::dvec3(glm::vec3(inner)));
+    return d + double(inner.w) <= double(outer.w);
+}
+
+// Every (ray, triangle) pair the exact test hits (either method, the ray's tmax) must reach the exact test.
+bool exact_hit(const RhTraceRay& r, const glm::vec3* v) {
+    Ray<float> ray;
+    ray.origin = r.origin;
+    ray.direction = r.direction;
+    ray.tmax = r.tmax;
+    float t, u, w;
+    return intersect_watertight(ray, WatertightRay<float>(r.direction), v[0], v[1], v[2], t, u, w) ||
+           intersect_moller(ray, v[0], v[1], v[2], t, u, w);
+}
+
+void expect_shape(const ObjectTree& tree, const std::vector<glm::vec4>& spheres, const std::string& what) {
+    ASSERT_GE(tree.levels(), 1u) << what;
+    EXPECT_EQ(tree.level_count.back(), 1u) << what << ": a single root";
+    // Every triangle in exactly one leaf.
+    std::vector<int> seen(spheres.size(), 0);
+    for (std::uint32_t j = 0; j < tree.level_count[0]; ++j) {
+        const ObjectNode& n = tree.nodes[tree.level_first[0] + j];
+        EXPECT_EQ(n.level, 1u);
+        EXPECT_GE(n.count, 1u);
+        EXPECT_LE(n.count, kClusterSize);
+        for (std::uint32_t k = 0; k < n.count; ++k) {
+            const std::uint32_t t = tree.order[n.first + k];
+            ++seen[t];
+            ASSERT_TRUE(holds(n.sphere, spheres[t]) || !std::isfinite(spheres[t].w)) << what << " leaf " << j;
+        }
+    }
+    for (std::size_t t = 0; t < seen.size(); ++t) ASSERT_EQ(seen[t], 1) << what << " triangle " << t;
+    // Every node above holds its children, which are exactly the level below, each once.
+    for (std::uint32_t l = 1; l < tree.levels(); ++l) {
+        std::uint32_t next = tree.level_first[l - 1];
+        for (std::uint32_t j = 0; j < tree.level_count[l]; ++j) {
+            const ObjectNode& n = tree.nodes[tree.level_first[l] + j];
+            EXPECT_EQ(n.level, l + 1);
+            EXPECT_EQ(n.first, next) << what;
+            EXPECT_LE(n.count, kObjectBranching);
+            next += n.count;
+            for (std::uint32_t k = 0; k < n.count; ++k)
+                ASSERT_TRUE(holds(n.sphere, tree.nodes[n.first + k].sphere)) << what << " level " << l + 1 << " node " << j;
+        }
+        EXPECT_EQ(next, tree.level_first[l - 1] + tree.level_count[l - 1]) << what;
+    }
+}
+
+void expect_no_hit_culled(const std::string& what, const std::vector<RhTraceRay>& rays,
+                          const std::vector<glm::vec3>& triangles, std::uint64_t* culled = nullptr) {
+    const std::vector<glm::vec4> spheres = spheres_of(triangles);
+    glm::vec3 lo, hi;
+    box_of(triangles, lo, hi);
+    std::vector<RhRay> rh;
+    for (const RhTraceRay& r : rays) rh.push_back({r.origin, r.direction});
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;
+    for (std::uint32_t t = 0; t < spheres.size(); t += 7) runs.emplace_back(t, std::min<std::uint32_t>(7, std::uint32_t(spheres.size()) - t));
+    const ObjectTree tree = build_object_tree(spheres, lo, hi), meshes = mesh_objects(spheres, runs);
+    expect_shape(tree, spheres, what);
+    for (int b : {4, 16})
+        for (int levels : {0, 2})
+            for (ObjectMode mode : {ObjectMode::triangles, ObjectMode::meshes, ObjectMode::tree}) {
+                const auto hierarchy = rh_build(rh, b, levels);
+                const PairTraversal p =
+                    traverse_pairs(rays, hierarchy, b, spheres, mode == ObjectMode::meshes ? meshes : tree, mode);
+                const std::set<std::pair<std::uint32_t, std::uint32_t>> reached(p.exact.begin(), p.exact.end());
+                ASSERT_EQ(reached.size(), p.exact.size()) << what << ": a pair reached the exact test twice";
+                for (std::uint32_t i = 0; i < rays.size(); ++i)
+                    for (std::uint32_t t = 0; t < spheres.size(); ++t)
+                        if (exact_hit(rays[i], &triangles[3 * t])) {
+                            ASSERT_TRUE(reached.count({i, t}))
+                                << what << " " << object_mode_name(mode) << " B=" << b << " levels " << levels
+                                << ": ray " << i << " hits triangle " << t << " but the pair was culled";
+                        }
+                EXPECT_LE(p.exact.size(), p.sphere_tests);
+                if (culled) *culled += rays.size() * spheres.size() - p.exact.size();
+            }
+}
+
+std::vector<RhTraceRay> trace_rays(const std::vector<RhRay>& rays, float tmax = INFINITY) {
+    std::vector<RhTraceRay> out;
+    for (const RhRay& r : rays) out.push_back({r.origin, r.direction, tmax});
+    return out;
+}
+
+TEST(ObjectTree, MortonCodesInterleaveCubicCellsAndClampOutsideTheBox) {
+    const glm::vec3 lo(0.0f), hi(4.0f, 1.0f, 2.0f);
+    const float scale = morton_scale(lo, hi);
+    EXPECT_EQ(scale, 256.0f);   // 1024 cells over the largest extent, the same size on every axis
+    EXPECT_EQ(morton_code(glm::vec3(0.0f), lo, scale), 0u);
+    EXPECT_EQ(morton_code(glm::vec3(4.0f, 0.0f, 0.0f), lo, scale), 0x24924924u);   // x cell 1023: every x bit
+    EXPECT_EQ(morton_code(glm::vec3(0.0f, 4.0f, 0.0f), lo, scale), 0x12492492u);   // y beyond the box: clamped
+    EXPECT_EQ(morton_code(glm::vec3(-1.0f, NAN, 0.0f), lo, scale), 0u);
+    EXPECT_EQ(morton_scale(lo, lo), 0.0f);
+    EXPECT_EQ(morton_scale(lo, glm::vec3(INFINITY)), 0.0f);
+    EXPECT_EQ(morton_scale(glm::vec3(NAN), hi), 0.0f);
+}
+
+TEST(ObjectTree, EveryTriangleInOneLeafAndEveryParentHoldsItsChildren) {
+    for (const ray_sets::Case& c : ray_sets::all()) {
+        const std::vector<glm::vec4> s = spheres_of(c.triangles);
+        glm::vec3 lo, hi;
+        box_of(c.triangles, lo, hi);
+        expect_shape(build_object_tree(s, lo, hi), s, c.name);
+    }
+    // Sizes around the cluster and branching factors, and a single triangle.
+    std::mt19937 g(5);
+    for (std::size_t n : {1u, 3u, 4u, 5u, 16u, 17u, 63u, 64u, 65u, 1000u}) {
+        std::vector<glm::vec3> v;
+        for (std::size_t i = 0; i < 3 * n; ++i) v.push_back(ray_sets::unit(g) * float(i % 7 + 1));
+        const std::vector<glm::vec4> s = spheres_of(v);
+        glm::vec3 lo, hi;
+        box_of(v, lo, hi);
+        expect_shape(build_object_tree(s, lo, hi), s, std::to_string(n) + " triangles");
+    }
+}
+
+TEST(ObjectTree, LeavesFollowMortonOrderStably) {
+    std::vector<glm::vec4> s;
+    for (int i = 0; i < 40; ++i) s.emplace_back(float((i * 7) % 10), 0.0f, 0.0f, 0.1f);   // equal centres too
+    const ObjectTree tree = build_object_tree(s, glm::vec3(0.0f), glm::vec3(10.0f));
+    const float scale = morton_scale(glm::vec3(0.0f), glm::vec3(10.0f));
+    for (std::size_t k = 1; k < tree.order.size(); ++k) {
+        const std::uint32_t a = tree.order[k - 1], b = tree.order[k];
+        const std::uint32_t ca = morton_code(glm::vec3(s[a]), glm::vec3(0.0f), scale);
+        const std::uint32_t cb = morton_code(glm::vec3(s[b]), glm::vec3(0.0f), scale);
+        ASSERT_TRUE(ca < cb || (ca == cb && a < b)) << k;
+    }
+}
+
+TEST(ObjectTree, NoPairThatHitsIsCulledOnTheAdversarialRaySets) {
+    std::uint64_t culled = 0;
+    for (const ray_sets::Case& c : ray_sets::all()) expect_no_hit_culled(c.name, trace_rays(c.rays), c.triangles, &culled);
+    EXPECT_GT(culled, 100000u);   // and the tests do cull
+}
+
+TEST(ObjectTree, ShortRaysCullBeyondTheirLengthButNeverAHit) {
+    for (const ray_sets::Case& c : ray_sets::all()) {
+        std::vector<RhTraceRay> rays = trace_rays(c.rays);
+        std::mt19937 g(11);
+        std::uniform_real_distribution<float> u(0.0f, 2.0f);
+        for (RhTraceRay& r : rays) r.tmax = u(g) * std::max(1e-30f, glm::length(c.triangles[0] - c.triangles[1]));
+        expect_no_hit_culled(c.name + " short", rays, c.triangles);
+    }
+}
+
+// Degenerate triangles (points, needles, repeated), a scene far from the origin and a tiny one.
+TEST(ObjectTree, DegenerateFarAndTinyScenesKeepEveryHit) {
+    std::mt19937 g(9);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (const auto& [name, scale, centre] : {std::tuple<const char*, float, glm::vec3>{"unit", 1.0f, glm::vec3(0.0f)},
+                                              {"far", 10.0f, glm::vec3(4e6f, -3e6f, 1e6f)},
+                                              {"tiny", 1e-5f, glm::vec3(3e-5f)}}) {
+        std::vector<glm::vec3> v;
+        for (int t = 0; t < 48; ++t) {
+            const glm::vec3 p = centre + scale * glm::vec3(u(g), u(g), u(g));
+            const glm::vec3 e1 = 0.3f * scale * ray_sets::unit(g), e2 = 0.3f * scale * ray_sets::unit(g);
+            if (t % 6 == 0) v.insert(v.end(), {p, p, p});                       // a point
+            else if (t % 6 == 1) v.insert(v.end(), {p, p + e1, p + 2.0f * e1});  // a needle
+            else v.insert(v.end(), {p, p + e1, p + e2});
+        }
+        for (int k = 0; k < 6; ++k) v.insert(v.end(), v.begin() + 6, v.begin() + 9);   // the same triangle again
+        std::vector<RhTraceRay> rays;
+        for (int i = 0; i < 300; ++i) {
+            const glm::vec3 target = v[std::size_t(i * 7) % v.size()];
+            const glm::vec3 o = centre + 2.0f * scale * glm::vec3(u(g), u(g), u(g));
+            rays.push_back({o, glm::normalize(target - o + 0.01f * scale * ray_sets::unit(g)), INFINITY});
+        }
+        expect_no_hit_culled(name, rays, v);
+    }
+}
+
+TEST(ObjectTree, RaySphereTestRejectsOnlyWhatNoRayPointReaches) {
+    const glm::vec4 s(0.0f, 0.0f, 10.0f, 1.0f);
+    EXPECT_TRUE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), INFINITY, s));
+    EXPECT_TRUE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1e-30f), INFINITY, s));   // tiny direction
+    EXPECT_TRUE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1e30f), INFINITY, s));    // huge
+    EXPECT_FALSE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), INFINITY, s));   // away from it
+    EXPECT_FALSE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 1.0f), INFINITY, s));    // past it
+    EXPECT_FALSE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), 8.9f, s));        // ends before it
+    EXPECT_TRUE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 2.0f), 4.6f, s));         // t in |d| units
+    EXPECT_TRUE(rh_ray_may_hit(glm::vec3(0.0f, 0.0f, 10.5f), glm::vec3(1.0f, 0.0f, 0.0f), INFINITY, s));   // inside
+    EXPECT_FALSE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f), INFINITY, s));
+    EXPECT_FALSE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(NAN, 0.0f, 1.0f), INFINITY, s));
+    EXPECT_TRUE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), NAN, s));   // NaN keeps the pair
+}
+
+TEST(ObjectTree, TheTreeMeetsFewerPairsThanEveryTriangle) {
+    // 4096 small triangles on a grid, a coherent beam: the tree's node and sphere tests are a small fraction of
+    // the triangles mode's (where every top node meets every triangle).
+    std::vector<glm::vec3> v;
+    for (int i = 0; i < 64; ++i)
+        for (int j = 0; j < 64; ++j) {
+            const glm::vec3 p(float(i), float(j), 0.0f);
+            v.insert(v.end(), {p, p + glm::vec3(0.5f, 0.0f, 0.0f), p + glm::vec3(0.0f, 0.5f, 0.0f)});
+        }
+    std::vector<RhTraceRay> rays;
+    std::vector<RhRay> rh;
+    for (int i = 0; i < 256; ++i) {
+        const glm::vec3 o(10.0f + 0.01f * float(i % 16), 20.0f + 0.01f * float(i / 16), 5.0f);
+        rays.push_back({o, glm::vec3(0.001f * float(i % 16), 0.0f, -1.0f), INFINITY});
+        rh.push_back({rays.back().origin, rays.back().direction});
+    }
+    const std::vector<glm::vec4> s = spheres_of(v);
+    glm::vec3 lo, hi;
+    box_of(v, lo, hi);
+    const ObjectTree tree = build_object_tree(s, lo, hi);
+    const auto levels = rh_build(rh, 4);
+    const PairTraversal flat = traverse_pairs(rays, levels, 4, s, tree, ObjectMode::triangles);
+    const PairTraversal dual = traverse_pairs(rays, levels, 4, s, tree, ObjectMode::tree);
+    std::set<std::pair<std::uint32_t, std::uint32_t>> a(flat.exact.begin(), flat.exact.end());
+    for (const auto& p : dual.exact) a.erase(p);
+    for (const auto& p : a) ASSERT_FALSE(exact_hit(rays[p.first], &v[3 * p.second])) << "a hit only the flat mode found";
+    EXPECT_LT(10 * (dual.node_tests + dual.sphere_tests), flat.node_tests + flat.sphere_tests);
+}
+
+}  // namespace
+}  // namespace rt
