@@ -39,7 +39,7 @@ std::vector<ObjectRange> object_ranges(const std::vector<std::uint32_t>& materia
 std::uint64_t HierarchyKindStats::node_tests() const {
     std::uint64_t n = 0;
     for (const HierarchyLevelStats& l : levels) n += l.pairs_in;
-    return n - sphere_tests;
+    return n - leaf_pairs;
 }
 
 std::vector<std::string> GpuRayHierarchy::program_names() {
@@ -155,6 +155,15 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     }
     object_nodes_ = total;
     objects_ = object_level_count_.back();
+}
+
+ObjectTree GpuRayHierarchy::download_tree() const {
+    ObjectTree tree;
+    tree.level_first = object_level_first_;
+    tree.level_count = object_level_count_;
+    tree.nodes = objects_buf_.download<ObjectNode>(object_nodes_);
+    tree.order = options.objects == ObjectMode::tree ? order_.download<std::uint32_t>(triangles_) : std::vector<std::uint32_t>{};
+    return tree;
 }
 
 std::uint32_t GpuRayHierarchy::read_info(int index) {
@@ -432,7 +441,8 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
 // The chunk's (ray, triangle) pairs (leaf_pairs of its count pairs) to rh_leaf.comp.
 void GpuRayHierarchy::leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs) {
     HierarchyKindStats& ks = stats[group_.kind];
-    ks.sphere_tests += leaf_pairs;
+    ks.leaf_pairs += leaf_pairs;
+    if (options.sphere_test) ks.sphere_tests += leaf_pairs;
     ks.levels[0].pairs_in += leaf_pairs;   // their survivors, the exact tests, come with the group's counts
     if (shadow_) {
         leaf_dispatch(step, 0, count);
@@ -493,6 +503,7 @@ void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t
     p.set("rh_count", count);
     p.set("rh_group_first", unsigned(in.first + group_.first));
     p.set("rh_batch_first", unsigned(in.first));
+    p.set("rh_sphere_test", options.sphere_test ? 1u : 0u);
     p.dispatch_threads(count);
     barrier();
 }

@@ -39,10 +39,11 @@ namespace rt {
 
 struct HierarchyOptions {
     int branching = 4;          // --branching: 4, 8 or 16 children per node
-    int levels = 0;             // --levels: upper levels used (0 = up to a single root)
+    int levels = 3;             // --levels: upper levels used (0 = up to a single root); 04's README: why 3
     ObjectMode objects = ObjectMode::tree;   // --objects: what the top ray nodes meet (object_tree.h)
     std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
     int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
+    bool sphere_test = true;         // --sphere-test: each ray against a triangle's sphere before the exact test
 };
 
 // A run of consecutive triangles (the flattened scene keeps no mesh boundaries: objects are runs of one material).
@@ -62,11 +63,12 @@ struct HierarchyKindStats {
     // Per ray level, the pairs tested whose ray side is on it: [0] = single rays (against object nodes and, in
     // sphere tests, triangles), [1..] nodes.
     std::vector<HierarchyLevelStats> levels;
-    std::uint64_t sphere_tests = 0;    // the per-ray test of (ray, triangle) pairs before the exact one
+    std::uint64_t leaf_pairs = 0;      // (ray, triangle) pairs that reached the leaves (level 0's pairs_in)
+    std::uint64_t sphere_tests = 0;    // the per-ray test of those pairs before the exact one (--sphere-test on)
     std::uint64_t local_tests = 0;     // exact ray/triangle tests at the leaves (the pairs that passed it)
     std::uint64_t fold_tests = 0;      // the closest-hit fold's re-tests (rh_closest.glsl)
     std::uint64_t brute_force_tests = 0;   // rays x triangles
-    std::uint64_t node_tests() const;   // every cone+sphere test but the sphere tests
+    std::uint64_t node_tests() const;   // every cone+sphere test of the traversal but the leaves' pairs
 };
 
 class GpuRayHierarchy {
@@ -91,6 +93,8 @@ public:
     // The object tree of the last prepare(): levels above the triangles and nodes (0 without a tree).
     std::uint32_t object_levels() const { return std::uint32_t(object_level_count_.size()); }
     std::size_t object_nodes() const { return object_nodes_; }
+    // The tree as the GPU built it (order, nodes, levels), for the tests: the same as build_object_tree's.
+    ObjectTree download_tree() const;
     // Entries per buffer (pairs, hits, counts) for the current storage limit.
     std::size_t capacity() const { return capacity_; }
     // Programs compiled for the current variant.

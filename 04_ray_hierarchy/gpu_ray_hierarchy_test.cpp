@@ -22,6 +22,7 @@
 #include "common/scene/effects.h"
 #include "common/trace/intersect.h"
 #include "gpu_ray_hierarchy.h"
+#include "object_tree.h"
 #include "ray_hierarchy.h"
 #include "ray_hierarchy_renderer.h"
 #include "ray_sets.h"
@@ -254,6 +255,52 @@ TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
     expect_brute_force_answers(cornell, "cornell");
     expect_brute_force_answers(transformed(cornell, 1e3f, glm::vec3(3e6f, -1e6f, 2e6f)), "cornell x1e3 at 3e6");
     expect_brute_force_answers(transformed(cornell, 1e-4f, glm::vec3(1e-3f)), "cornell x1e-4");
+}
+
+// The object tree built on the GPU (ot_build.comp and the shared radix sort) is the CPU twin's (build_object_tree):
+// the same leaf order and levels, node for node; every GPU sphere holds its children; on a scene far from the
+// origin and a tiny one too.
+TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
+    gpu::test_context();
+    const Scene cornell = scene_at("cornell");
+    for (const auto& [what, scene] : {std::pair<std::string, Scene>{"cornell", cornell},
+                                      {"spheres:45", scene_at("spheres:45")},
+                                      {"cornell x1e3 at 3e6", transformed(cornell, 1e3f, glm::vec3(3e6f, -1e6f, 2e6f))},
+                                      {"cornell x1e-4", transformed(cornell, 1e-4f, glm::vec3(1e-3f))}}) {
+        gpu::GpuScene gpu_scene;
+        gpu_scene.upload(scene);
+        GpuRayHierarchy h;
+        h.options.objects = ObjectMode::tree;
+        h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+        const ObjectTree gpu = h.download_tree();
+        std::vector<glm::vec4> spheres;
+        for (std::size_t t = 0; t < scene.triangle_count(); ++t)
+            spheres.push_back(rh_triangle_sphere(scene.positions[3 * t], scene.positions[3 * t + 1],
+                                                 scene.positions[3 * t + 2]));
+        const ObjectTree cpu = build_object_tree(spheres, scene.bounds.lo, scene.bounds.hi);
+        ASSERT_EQ(gpu.order, cpu.order) << what;
+        ASSERT_EQ(gpu.level_first, cpu.level_first) << what;
+        ASSERT_EQ(gpu.level_count, cpu.level_count) << what;
+        ASSERT_EQ(gpu.nodes.size(), cpu.nodes.size()) << what;
+        EXPECT_EQ(h.object_levels(), cpu.levels());
+        auto holds = [](glm::vec4 outer, glm::vec4 inner) {
+            return glm::length(glm::dvec3(glm::vec3(outer)) - glm::dvec3(glm::vec3(inner))) + double(inner.w) <=
+                   double(outer.w);
+        };
+        for (std::size_t i = 0; i < cpu.nodes.size(); ++i) {
+            const ObjectNode &g = gpu.nodes[i], &c = cpu.nodes[i];
+            ASSERT_EQ(g.first, c.first) << what << " node " << i;
+            ASSERT_EQ(g.count, c.count) << what << " node " << i;
+            ASSERT_EQ(g.level, c.level) << what << " node " << i;
+            const float scale = std::max(glm::length(glm::vec3(c.sphere)), c.sphere.w);
+            EXPECT_LE(glm::length(glm::vec3(g.sphere) - glm::vec3(c.sphere)), 1e-5f * scale) << what << " node " << i;
+            EXPECT_NEAR(g.sphere.w, c.sphere.w, 1e-5f * scale) << what << " node " << i;
+            for (std::uint32_t k = 0; k < g.count; ++k) {
+                const glm::vec4 child = g.level == 1 ? spheres[gpu.order[g.first + k]] : gpu.nodes[g.first + k].sphere;
+                ASSERT_TRUE(holds(g.sphere, child)) << what << " node " << i << " child " << k;
+            }
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------------------------------------------

@@ -22,7 +22,8 @@ void RayHierarchyRenderer::add_options(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember({4, 8, 16}));
     app.add_option("--levels", hierarchy_options.levels,
-                   "Upper levels of the hierarchy used above the rays (0 = all, up to a single root)")
+                   "Upper levels of the hierarchy used above the rays (0 = all, up to a single root; default 3: with the object "
+                   "tree, the levels above add node tests and steps and cull nothing more)")
         ->capture_default_str()
         ->check(CLI::Range(0, 32));
     app.add_option_function<std::string>(
@@ -36,6 +37,11 @@ void RayHierarchyRenderer::add_options(CLI::App& app) {
            "frame), meshes (runs of one material, then their triangles: Reis) or triangles (every triangle: Roger et "
            "al. 2007)")
         ->check(CLI::IsMember({"tree", "meshes", "triangles"}));
+    app.add_option_function<std::string>(
+           "--sphere-test", [this](const std::string& s) { hierarchy_options.sphere_test = s == "on"; },
+           "Test each ray against a triangle's bounding sphere before the exact ray/triangle test: on (default) or "
+           "off (every (ray, triangle) pair the hierarchy leaves gets the exact test, as in the papers)")
+        ->check(CLI::IsMember({"on", "off"}));
 }
 
 void RayHierarchyRenderer::build(const Scene& scene, const RenderSettings&) {
@@ -69,6 +75,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     nlohmann::json rh = {{"branching", o.branching},
                          {"levels_limit", o.levels},
                          {"objects", object_mode_name(o.objects)},
+                         {"sphere_test", o.sphere_test},
                          {"object_tree",
                           {{"levels", hierarchy_->object_levels()},
                            {"nodes", hierarchy_->object_nodes()},

@@ -1,7 +1,8 @@
 #version 450 core
 // The leaves: each (ray, triangle) pair of a chunk (the other pairs of the chunk are rh_test.comp's) gets the cheap
 // per-ray test first, the ray against the triangle's bounding sphere (rh_ray_may_hit; the sphere is computed from
-// the vertices here, as rh_spheres.comp does, so no buffer more is bound), and only then the exact ray/triangle test
+// the vertices here, as rh_spheres.comp does, so no buffer more is bound; --sphere-test off skips it, as the papers
+// do), and only then the exact ray/triangle test
 // (common/shaders/intersect.glsl, as brute force). Shadow rays (RH_SHADOW): any hit blocks the light. Closest hits:
 // step 1 of rh_closest.glsl. Each work group adds its exact tests to rh_info once (the CPU adds the batch's to the
 // pipeline's test counter, rh_fold.comp mode 6); only the heatmap needs one atomic per test, on the ray's pixel.
@@ -23,6 +24,7 @@ layout(std430, binding = WF_BINDING_RESULTS) buffer Occluded { uint rh_occluded[
 uniform uint rh_count;          // pairs in the chunk
 uniform uint rh_group_first;    // wf_rays_in index of the group's ray 0
 uniform uint rh_batch_first;    // wf_rays_in index of the batch's ray 0 (results and state are per batch ray)
+uniform uint rh_sphere_test;    // 1: the sphere test first (--sphere-test on); 0: every pair gets the exact test
 
 shared uint rh_group_exact;
 
@@ -38,7 +40,7 @@ void main() {
         const uint slot = ray_index - rh_batch_first;
         vec3 a, b, c;
         rh_load_triangle(triangle, a, b, c);
-        if (rh_ray_may_hit(r.origin, r.direction, r.tmax, rh_triangle_sphere(a, b, c))) {
+        if (rh_sphere_test == 0u || rh_ray_may_hit(r.origin, r.direction, r.tmax, rh_triangle_sphere(a, b, c))) {
             atomicAdd(rh_group_exact, 1u);
             float t, u, v;
             const bool hit =
