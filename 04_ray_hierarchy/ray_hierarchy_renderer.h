@@ -19,7 +19,7 @@ public:
     RayHierarchyRenderer();
     ~RayHierarchyRenderer() override;
 
-    void add_options(CLI::App& app) override;   // the GPU options, --branching, --levels, --object-culling
+    void add_options(CLI::App& app) override;   // the GPU options, --branching, --levels, --objects, --sphere-test
     HierarchyOptions hierarchy_options;
 
 protected:
