@@ -16,8 +16,9 @@ constexpr std::uint32_t kTriangleFlag = 0x80000000u;          // rh_common.glsl:
 constexpr std::uint32_t kMaxRayIndex = 1u << 27;              // RH_RAY_INDEX_BITS
 constexpr int kMaxRayLevels = 32;                             // rh_test.comp's level tables
 // rh_info.glsl
-constexpr std::uint32_t kInfoWords = 144, kInfoLeaves = 8, kInfoExact = 10, kInfoObjectIn = 12, kInfoObjectOut = 14,
-                        kInfoLevelIn = 16, kInfoLevelOut = 80, kInfoGroupFirst = 8;
+constexpr std::uint32_t kInfoWords = 224, kInfoExact = 10, kInfoObjectIn = 12, kInfoObjectOut = 14,
+                        kInfoLevelIn = 16, kInfoLevelOut = 80, kInfoLeafPairs = 144, kInfoStepCount = 160, kInfoGroupFirst = 8;
+constexpr int kMaxSteps = 63;   // rh_info.glsl: RH_INFO_STEP_COUNT slots
 
 void barrier() {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -45,12 +46,14 @@ std::uint64_t HierarchyKindStats::node_tests() const {
 std::vector<std::string> GpuRayHierarchy::program_names() {
     std::vector<std::string> names;
     for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_build.comp", "rh_test.comp",
-                          "rh_expand.comp", "rh_leaf.comp", "rh_fold.comp"})
+                          "rh_expand.comp", "rh_leaf.comp", "rh_fold.comp", "rh_args.comp"})
         names.push_back(std::string("04_ray_hierarchy/") + p);
     return names;
 }
 
-GpuRayHierarchy::GpuRayHierarchy() : info_(kInfoWords * sizeof(std::uint32_t)), group_count_(sizeof(std::uint32_t)) {}
+GpuRayHierarchy::GpuRayHierarchy()
+    : info_(kInfoWords * sizeof(std::uint32_t)), group_count_(sizeof(std::uint32_t)),
+      args_((kMaxSteps + 1) * 3 * sizeof(std::uint32_t)) {}
 
 void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     std::string key;
@@ -68,6 +71,7 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     shadow.emplace("RH_SHADOW", "1");
     leaf_shadow_ = Program::compute("04_ray_hierarchy/rh_leaf.comp", shadow);
     fold_ = Program::compute("04_ray_hierarchy/rh_fold.comp", d);
+    args_pass_ = Program::compute("04_ray_hierarchy/rh_args.comp", d);
     key_ = key;
 }
 
@@ -261,7 +265,10 @@ void GpuRayHierarchy::read_group_counts() {
         ks.levels[l].pairs_in += word64(info, kInfoLevelIn + 2 * std::uint32_t(l));
         ks.levels[l].pairs_out += word64(info, kInfoLevelOut + 2 * std::uint32_t(l));
     }
-    const std::uint64_t exact = word64(info, kInfoExact);
+    const std::uint64_t exact = word64(info, kInfoExact), leaf_pairs = word64(info, kInfoLeafPairs);
+    ks.leaf_pairs += leaf_pairs;
+    if (options.sphere_test) ks.sphere_tests += leaf_pairs;
+    ks.levels[0].pairs_in += leaf_pairs;
     ks.levels[0].pairs_out += exact;
     ks.object_pairs_in += word64(info, kInfoObjectIn);
     ks.object_pairs_out += word64(info, kInfoObjectOut);
@@ -351,6 +358,8 @@ void GpuRayHierarchy::set_source(const Program& p, const Source& s) const {
 // chunks of at most capacity() pairs, whole rows of items when a row fits.
 void GpuRayHierarchy::traverse(int top) {
     top_ = top;
+    // Every split takes one side one level down, so after this many steps only (ray, triangle) pairs are left.
+    max_depth_ = top + int(options.objects == ObjectMode::tree ? object_levels() : options.objects == ObjectMode::meshes ? 1 : 0);
     const bool triangles = options.objects == ObjectMode::triangles;
     const std::uint32_t items = std::uint32_t(triangles ? triangles_ : objects_);
     const std::uint32_t item_first = triangles ? 0u : object_level_first_.back();
@@ -361,13 +370,13 @@ void GpuRayHierarchy::traverse(int top) {
         const std::uint32_t per_chunk = cap / items;
         for (std::uint32_t n0 = 0; n0 < nodes; n0 += per_chunk) {
             const std::uint32_t k = std::min(per_chunk, nodes - n0);
-            test_chunk(0, Source{true, 0, n0, item_first, items, flag}, k * items);
+            test_chunk(0, Source{true, 0, n0, item_first, items, flag}, k * items, false);
         }
     } else {
         for (std::uint32_t n0 = 0; n0 < nodes; ++n0)
             for (std::uint32_t i0 = 0; i0 < items; i0 += cap) {
                 const std::uint32_t k = std::min(cap, items - i0);
-                test_chunk(0, Source{true, 0, n0, item_first + i0, k, flag}, k);
+                test_chunk(0, Source{true, 0, n0, item_first + i0, k, flag}, k, false);
             }
     }
 }
@@ -375,16 +384,32 @@ void GpuRayHierarchy::traverse(int top) {
 // One chunk of pairs at one step of the traversal: test, scan, the leaves' pairs to rh_leaf.comp, then the
 // children expanded window by window, each window traced on before the next (depth first, so each step needs one
 // buffer of capacity() pairs).
-void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t count) {
+//
+// `on_gpu`: the chunk's length is known on the GPU only (rh_info[kInfoStepCount + step], args_ holds its dispatch),
+// and `count` is a bound of it. While the children of a chunk cannot outnumber one window (count x the most
+// children a pair has), the traversal goes on without reading anything back: the passes are dispatched indirectly.
+// Only when that bound passes capacity() are the chunk's counts read back (one sync), to cut it into windows.
+void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t count, bool on_gpu) {
+    if (step > kMaxSteps) throw std::logic_error("04_ray_hierarchy: more traversal steps than rh_info.glsl holds");
     step_buffers(step, count);
     const std::uint32_t b = std::uint32_t(options.branching);
-    std::uint32_t total = 0, leaf_pairs = 0;
+    const std::uint32_t slot = kInfoStepCount + std::uint32_t(step);
+    std::uint32_t total = 0;
+    // The most children one pair of this chunk can have: B rays, 4 tree nodes or a cluster's 4 triangles, or a mesh
+    // object's triangles (only at the top: below it every object side is a triangle).
+    const std::uint64_t most = options.objects == ObjectMode::meshes && step == 0 ? 4096 : std::max<std::uint32_t>(b, 4);
+    // Every split takes one side one level down, so all pairs of a step are equally deep: the last step holds only
+    // (ray, triangle) pairs, and only it does. They go to the leaves; the other steps are tested and expanded.
+    if (step >= max_depth_) {
+        ++chunks;
+        leaves(step, count, count, on_gpu);
+        return;
+    }
+    const bool chain = std::uint64_t(count) * most <= capacity_;
     {
         std::optional<gpu::GpuTimer::Scope> timed;
         if (timer) timed.emplace(*timer, phase("rh_traverse"));
-        const std::uint32_t zero[2] = {0, 0};
-        info_.upload(&zero[0], 4, 3 * 4);
-        info_.upload(&zero[1], 4, kInfoLeaves * 4);
+        if (on_gpu) group_sums_.clear_u32(0);   // the scan reads the sums of every work group the bound may need
         in_->rays.bind(gpu::kWavefrontBindingRaysIn);
         nodes_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
         spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
@@ -395,57 +420,80 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         group_sums_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
         set_source(test_, src);
         test_.set("rh_count", count);
+        test_.set("rh_count_slot", on_gpu ? slot : 0u);
         test_.set("rh_group_first", unsigned(in_->first + group_.first));
         test_.set("rh_branching", b);
         test_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
-        test_.dispatch_threads(count);
+        if (on_gpu)
+            test_.dispatch_indirect(args_, std::size_t(step) * 12);
+        else
+            test_.dispatch_threads(count);
         barrier();
         const std::size_t groups = (std::size_t(count) + 63) / 64;
-        compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, 12);
-        std::uint32_t info[kInfoLeaves + 1];
-        info_.download(info, sizeof info);
-        ++syncs;
-        total = info[3];
-        leaf_pairs = info[kInfoLeaves];
+        compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);
+        if (!chain) {
+            if (on_gpu) count = read_info(int(slot));
+            on_gpu = false;
+            total = read_info(int(slot) + 1);
+        }
         ++chunks;
     }
-    if (leaf_pairs > 0) leaves(step, count, leaf_pairs);
     const std::uint32_t cap = std::uint32_t(capacity_);
-    for (std::uint32_t w0 = 0; w0 < total; w0 += cap) {
-        const std::uint32_t w = std::min(cap, total - w0);
+    if (chain) {   // one window of at most `cap` pairs, whatever the GPU found
+        expand(step, src, count, on_gpu, 0, cap);
         {
             std::optional<gpu::GpuTimer::Scope> timed;
             if (timer) timed.emplace(*timer, phase("rh_traverse"));
-            step_buffers(step + 1, 0);
-            pairs_[step + 1].reserve(std::size_t(w) * 8);
-            order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
-            objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-            if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
-            pairs_[step + 1].bind(gpu::kWavefrontBindingTraversalFirst + 4);
-            counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
-            offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 6);
-            set_source(expand_, src);
-            expand_.set("rh_count", count);
-            expand_.set("rh_window_first", w0);
-            expand_.set("rh_window_count", w);
-            expand_.set("rh_branching", b);
-            expand_.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
-            expand_.dispatch_threads(count);
+            info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+            args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+            args_pass_.set("rh_slot", slot + 1);
+            args_pass_.set("rh_args_first", unsigned(step + 1) * 3);
+            args_pass_.dispatch(1);
             barrier();
-            ++windows;
         }
-        test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, w);
+        test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, std::uint32_t(std::min<std::uint64_t>(std::uint64_t(count) * most, cap)), true);
+        return;
+    }
+    for (std::uint32_t w0 = 0; w0 < total; w0 += cap) {
+        const std::uint32_t w = std::min(cap, total - w0);
+        expand(step, src, count, false, w0, w);
+        test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, w, false);
     }
 }
 
+// The children of a chunk's survivors with outputs in [w0, w0 + w) to pairs_[step + 1].
+void GpuRayHierarchy::expand(int step, const Source& src, std::uint32_t count, bool on_gpu, std::uint32_t w0,
+                             std::uint32_t w) {
+    std::optional<gpu::GpuTimer::Scope> timed;
+    if (timer) timed.emplace(*timer, phase("rh_traverse"));
+    step_buffers(step + 1, 0);
+    pairs_[step + 1].reserve(std::size_t(w) * 8);
+    order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
+    objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
+    if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+    pairs_[step + 1].bind(gpu::kWavefrontBindingTraversalFirst + 4);
+    counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    set_source(expand_, src);
+    expand_.set("rh_count", count);
+    expand_.set("rh_count_slot", on_gpu ? kInfoStepCount + std::uint32_t(step) : 0u);
+    expand_.set("rh_window_first", w0);
+    expand_.set("rh_window_count", w);
+    expand_.set("rh_branching", unsigned(options.branching));
+    expand_.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
+    if (on_gpu)
+        expand_.dispatch_indirect(args_, std::size_t(step) * 12);
+    else
+        expand_.dispatch_threads(count);
+    barrier();
+    ++windows;
+}
+
 // The chunk's (ray, triangle) pairs (leaf_pairs of its count pairs) to rh_leaf.comp.
-void GpuRayHierarchy::leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs) {
-    HierarchyKindStats& ks = stats[group_.kind];
-    ks.leaf_pairs += leaf_pairs;
-    if (options.sphere_test) ks.sphere_tests += leaf_pairs;
-    ks.levels[0].pairs_in += leaf_pairs;   // their survivors, the exact tests, come with the group's counts
+void GpuRayHierarchy::leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs, bool on_gpu) {
     if (shadow_) {
-        leaf_dispatch(step, 0, count);
+        leaf_dispatch(step, 0, count, on_gpu);
         return;
     }
     // The hit list holds hit_capacity_ entries: a chunk goes in once there is room for all of its leaf pairs (each
@@ -461,9 +509,13 @@ void GpuRayHierarchy::leaves(int step, std::uint32_t count, std::uint32_t leaf_p
         }
     }
     if (hits_bound_ + leaf_pairs <= cap) {
-        leaf_dispatch(step, 0, count);
+        leaf_dispatch(step, 0, count, on_gpu);
         hits_bound_ += leaf_pairs;
         return;
+    }
+    if (on_gpu) {   // the chunk is cut into parts by its length: read it
+        count = read_info(int(kInfoStepCount) + step);
+        on_gpu = false;
     }
     for (std::uint32_t first = 0; first < count;) {
         if (hits_bound_ + (count - first) > cap) {
@@ -478,13 +530,13 @@ void GpuRayHierarchy::leaves(int step, std::uint32_t count, std::uint32_t leaf_p
             throw std::runtime_error("04_ray_hierarchy: more than " + std::to_string(cap) +
                                      " hits within the tie range of their rays' closest hits (the hit list is full)");
         const std::uint32_t n = std::uint32_t(std::min<std::uint64_t>(room, count - first));
-        leaf_dispatch(step, first, n);
+        leaf_dispatch(step, first, n, false);
         hits_bound_ += n;
         first += n;
     }
 }
 
-void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t count) {
+void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t count, bool on_gpu) {
     std::optional<gpu::GpuTimer::Scope> timed;
     if (timer) timed.emplace(*timer, phase("rh_local"));
     const Program& p = shadow_ ? leaf_shadow_ : leaf_closest_;
@@ -501,10 +553,14 @@ void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t
     in.wavefront.set_uniforms(p);
     set_source(p, Source{false, first, 0, 0, 0, 0});
     p.set("rh_count", count);
+    p.set("rh_count_slot", on_gpu ? kInfoStepCount + std::uint32_t(step) : 0u);
     p.set("rh_group_first", unsigned(in.first + group_.first));
     p.set("rh_batch_first", unsigned(in.first));
     p.set("rh_sphere_test", options.sphere_test ? 1u : 0u);
-    p.dispatch_threads(count);
+    if (on_gpu)
+        p.dispatch_indirect(args_, std::size_t(step) * 12);
+    else
+        p.dispatch_threads(count);
     barrier();
 }
 

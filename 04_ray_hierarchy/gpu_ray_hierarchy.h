@@ -114,10 +114,11 @@ private:
     int build(const gpu::BatchTraceInputs& in, const Group& g);
     void traverse(int top);
     void build_tree(const Bounds& bounds);
-    void test_chunk(int step, const Source& src, std::uint32_t count);
-    void leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs);
+    void test_chunk(int step, const Source& src, std::uint32_t count, bool on_gpu);
+    void expand(int step, const Source& src, std::uint32_t count, bool on_gpu, std::uint32_t w0, std::uint32_t w);
+    void leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs, bool on_gpu);
     void read_group_counts();
-    void leaf_dispatch(int step, std::uint32_t first, std::uint32_t count);
+    void leaf_dispatch(int step, std::uint32_t first, std::uint32_t count, bool on_gpu);
     void prune_hits();
     void fold(const gpu::BatchTraceInputs& in);
     void set_source(const gpu::Program& p, const Source& s) const;
@@ -126,11 +127,12 @@ private:
     std::string phase(const char* name) const;
 
     std::string key_;
-    gpu::Program spheres_, tree_, build_, heads_, test_, expand_, leaf_closest_, leaf_shadow_, fold_;
+    gpu::Program spheres_, tree_, build_, heads_, test_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_;
     gpu::Compaction compaction_;
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
     gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_sums_, group_heads_, group_count_,
         head_flags_, state_, hits_, hits_tmp_, prune_flags_, prune_offsets_;
+    gpu::Buffer args_;   // indirect dispatch arguments per step (3 uints each), written by rh_args.comp
     std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per step of the depth-first traversal (0 = the top)
     std::vector<std::uint32_t> level_first_, level_nodes_;   // the ray hierarchy's levels (level 0 = the rays)
     std::vector<std::uint32_t> object_level_first_, object_level_count_;   // the object tree's (level 1 first)
@@ -142,6 +144,7 @@ private:
     Group group_;
     bool shadow_ = false;
     int top_ = 0;
+    int max_depth_ = 0;   // steps after which only (ray, triangle) pairs are left
 };
 
 }  // namespace rt

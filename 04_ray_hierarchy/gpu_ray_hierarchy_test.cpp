@@ -410,6 +410,57 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
     }
 }
 
+// A batch whose chunks fit one window each is traced without a read-back inside it: the GPU sizes every step's
+// dispatches from the counts it wrote itself (rh_args.comp). Shadow rays of one light (one group): the read-backs are
+// the batch's groups (3), the group's counts (1) and, once the CPU's bound of the pairs (x4 a step) passes the pair
+// capacity, one look at the real count (2), however many steps the traversal takes (a read-back per step before);
+// with 64-pair buffers the chunks are cut into windows (read-backs), with the same occlusion and counts.
+TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
+    gpu::test_context();
+    const Scene scene = scene_at("cornell");
+    gpu::GpuScene gpu_scene;
+    gpu_scene.upload(scene);
+    RenderSettings settings;
+    settings.effects = analyze_effects(scene);
+    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
+    wavefront.begin_frame(gpu_scene, settings);
+    std::mt19937 g(8);
+    std::vector<gpu::WavefrontRay> rays;
+    const glm::vec3 lo = scene.bounds.lo, size = scene.bounds.hi - scene.bounds.lo;
+    std::uniform_real_distribution<float> u(0.1f, 0.9f);
+    for (int i = 0; i < 2000; ++i) {
+        gpu::WavefrontRay r{};
+        r.origin = lo + size * glm::vec3(u(g), u(g), u(g));
+        r.direction = ray_sets::unit(g);
+        r.tmax = 0.5f * glm::length(size);
+        r.depth_kind = 1u << 16 | 1u;
+        rays.push_back(r);
+    }
+    const gpu::Buffer ray_buffer = gpu::Buffer::from(rays);
+    gpu::Buffer results(rays.size() * sizeof(gpu::WavefrontTraceResult));
+    std::vector<std::uint32_t> reference;
+    std::uint64_t reference_tests = 0;
+    for (std::size_t capacity : {std::size_t(0), std::size_t(64)}) {
+        GpuRayHierarchy h;
+        h.options.pair_capacity = capacity;
+        h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+        h.trace({ray_buffer, 0, rays.size(), results, nullptr, wavefront}, true);
+        const std::vector<std::uint32_t> occluded = results.download<std::uint32_t>(rays.size());
+        ASSERT_EQ(h.stats[1].groups, 1u);
+        EXPECT_GT(h.chunks, 5u) << "steps of the traversal";
+        if (capacity == 0) {
+            EXPECT_LE(h.syncs, 6u) << "the groups (3), the group's counts (1), one bound check (2)";
+            EXPECT_LT(h.syncs, h.chunks);
+            reference = occluded;
+            reference_tests = h.stats[1].node_tests();
+        } else {
+            EXPECT_GT(h.syncs, 4u) << "64-pair windows are read back";
+            EXPECT_EQ(occluded, reference);
+            EXPECT_EQ(h.stats[1].node_tests(), reference_tests);
+        }
+    }
+}
+
 std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {
     std::sort(hits.begin(), hits.end(), [](const HitRecord& a, const HitRecord& b) {
         return std::tie(a.pixel, a.sample, a.path, a.kind_light) < std::tie(b.pixel, b.sample, b.path, b.kind_light);

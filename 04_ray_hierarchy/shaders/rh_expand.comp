@@ -17,14 +17,13 @@ layout(std430, binding = RH_BINDING_PAIRS_OUT) writeonly buffer PairsOut { uvec2
 layout(std430, binding = RH_BINDING_COUNTS) readonly buffer Counts { uint rh_counts[]; };
 layout(std430, binding = RH_BINDING_OFFSETS) readonly buffer Offsets { uint rh_group_offsets[]; };
 
-uniform uint rh_count;           // pairs tested in the chunk
 uniform uint rh_window_first, rh_window_count;
 uniform uint rh_branching;
 uniform uint rh_identity_order;  // 1: level-1 objects hold triangles first + k (meshes), 0: rh_order[first + k]
 
 void main() {
     const uint i = rt_global_index();
-    if (i >= rh_count) return;
+    if (i >= rh_chunk_count()) return;
     const uint word = rh_counts[i];
     const uint n = word & 0x1fffu;
     if (n == 0u) return;

@@ -1,18 +1,18 @@
-// The traversal's counters (GpuRayHierarchy reads them back: the chunk's words after each chunk's scan, the group's
-// 64-bit counts once per group). A 64-bit count is a (lo, hi) pair of uints: rh_add64 carries into hi when lo wraps,
+// The traversal's counters (GpuRayHierarchy reads the group's 64-bit counts back once per group, a chunk's length
+// only when it must cut the next step into windows). A 64-bit count is a (lo, hi) pair of uints: rh_add64 carries into hi when lo wraps,
 // so a group's pairs may pass 2^32.
 #define RH_INFO_SURVIVORS 0u      // unused
 #define RH_INFO_HITS 1u           // the hit list's length (closest hits)
 #define RH_INFO_FOLD 2u           // the fold's "some ray has a next hit" flag
-#define RH_INFO_TOTAL 3u          // the chunk's expanded pairs (the scan total)
 #define RH_INFO_FOLD_TESTS 4u     // [4 + kind]: the fold's re-tests per ray kind
-#define RH_INFO_LEAVES 8u         // the chunk's (ray, triangle) pairs: they go to rh_leaf.comp
 #define RH_INFO_EXACT 10u         // 64-bit: exact ray/triangle tests (the pairs that passed the sphere test)
 #define RH_INFO_OBJECT_IN 12u     // 64-bit: pairs tested whose object side is an object node
 #define RH_INFO_OBJECT_OUT 14u    // 64-bit: those that survived
 #define RH_INFO_LEVEL_IN 16u      // 64-bit [16 + 2 l]: pairs tested whose ray side is on level l (l < 32)
 #define RH_INFO_LEVEL_OUT 80u     // 64-bit [80 + 2 l]: those that survived (level 0: the exact tests)
-#define RH_INFO_WORDS 144u
+#define RH_INFO_LEAF_PAIRS 144u   // 64-bit: (ray, triangle) pairs given to rh_leaf.comp
+#define RH_INFO_STEP_COUNT 160u  // [160 + s]: the length of step s's chunk, written by step s - 1's scan (s < 64)
+#define RH_INFO_WORDS 224u
 
 layout(std430, binding = RH_BINDING_INFO) buffer Info { uint rh_info[]; };
 

@@ -21,19 +21,22 @@ layout(local_size_x = 64) in;
 layout(std430, binding = WF_BINDING_RESULTS) buffer Occluded { uint rh_occluded[]; };
 #endif
 
-uniform uint rh_count;          // pairs in the chunk
 uniform uint rh_group_first;    // wf_rays_in index of the group's ray 0
 uniform uint rh_batch_first;    // wf_rays_in index of the batch's ray 0 (results and state are per batch ray)
 uniform uint rh_sphere_test;    // 1: the sphere test first (--sphere-test on); 0: every pair gets the exact test
 
-shared uint rh_group_exact;
+shared uint rh_group_exact, rh_group_leaf_pairs;
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) rh_group_exact = 0u;
+    if (gl_LocalInvocationIndex == 0u) {
+        rh_group_exact = 0u;
+        rh_group_leaf_pairs = 0u;
+    }
     barrier();
     const uint i = rt_global_index();
-    const uvec2 p = i < rh_count ? rh_pair(i) : uvec2(0xffffffffu, 0u);
+    const uvec2 p = i < rh_chunk_count() ? rh_pair(i) : uvec2(0xffffffffu, 0u);
     if (rh_ray_level(p.x) == 0u && rh_is_triangle(p.y)) {
+        atomicAdd(rh_group_leaf_pairs, 1u);
         const uint ray_index = rh_group_first + rh_ray_index(p.x);
         const uint triangle = p.y & ~RH_TRIANGLE_FLAG;
         const WavefrontRay r = wf_rays_in[ray_index];
@@ -61,5 +64,8 @@ void main() {
         }
     }
     barrier();
-    if (gl_LocalInvocationIndex == 0u) rh_add64(RH_INFO_EXACT, rh_group_exact);
+    if (gl_LocalInvocationIndex == 0u) {
+        rh_add64(RH_INFO_EXACT, rh_group_exact);
+        rh_add64(RH_INFO_LEAF_PAIRS, rh_group_leaf_pairs);
+    }
 }

@@ -2,7 +2,15 @@
 // either explicit (rh_pairs[rh_pair_first + i]) or, at the top, implicit: every node of the top ray level from
 // rh_node_first with every item of [rh_item_first, + rh_item_count) (triangles, objects, or the object tree's top
 // level; rh_item_flag marks triangles), node-major.
+#include "rh_info.glsl"
+
 layout(std430, binding = RH_BINDING_PAIRS) readonly buffer Pairs { uvec2 rh_pairs[]; };
+
+// The chunk's length: rh_count, or, when the CPU has not read it back (rh_count_slot > 0), what the previous step's
+// scan wrote to rh_info[rh_count_slot] (the pass is then dispatched indirectly, rh_args.comp).
+uniform uint rh_count;
+uniform uint rh_count_slot;
+uint rh_chunk_count() { return rh_count_slot == 0u ? rh_count : rh_info[rh_count_slot]; }
 
 uniform uint rh_implicit;
 uniform uint rh_pair_first;

@@ -3,7 +3,9 @@
 // levels: a ray node against an object node or a triangle (rh_may_hit), a single ray against an object node
 // (rh_ray_may_hit). A survivor splits one side (object_tree.h): the ray node into its children, or the object node
 // into its children (nodes, or a leaf's triangles); a triangle is never split, a single ray neither. (ray, triangle)
-// pairs are not tested here: rh_leaf.comp gives them the sphere test and the exact test.
+// pairs are not tested here: rh_leaf.comp gives them the sphere test and the exact test. Every split takes one side
+// one level down, so the pairs of one step are equally deep and the (ray, triangle) pairs are all in the last step,
+// which only rh_leaf.comp sees.
 //
 // Writes for each pair how many pairs it expands to (0 when rejected), and each work group of 64 pairs its total:
 // the shared scan (common/gpu/scan.h) runs over these totals only, 64 times fewer values than pairs. A pair's place
@@ -23,14 +25,13 @@ layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject 
 layout(std430, binding = RH_BINDING_COUNTS) writeonly buffer Counts { uint rh_counts[]; };
 layout(std430, binding = RH_BINDING_GROUP_SUMS) writeonly buffer GroupSums { uint rh_group_sums[]; };
 
-uniform uint rh_count;             // pairs in the chunk
 uniform uint rh_level_first[32];   // ray level l >= 1: its node 0 in rh_nodes
 uniform uint rh_level_nodes[32];   // nodes on ray level l (level 0: the group's rays)
 uniform uint rh_group_first;       // wf_rays_in index of the group's ray 0
 uniform uint rh_branching;
 uniform uint rh_split_larger;      // 1 (--objects tree): split the larger side; 0: the object side first
 
-shared uint rh_group_sum, rh_group_leaves;
+shared uint rh_group_sum;
 shared uint rh_level_in[32], rh_level_out[32];
 shared uint rh_object_in, rh_object_out;
 
@@ -42,20 +43,17 @@ void main() {
     }
     if (lane == 0u) {
         rh_group_sum = 0u;
-        rh_group_leaves = 0u;
         rh_object_in = 0u;
         rh_object_out = 0u;
     }
     barrier();
     const uint i = rt_global_index();
-    if (i < rh_count) {
+    if (i < rh_chunk_count()) {
         const uvec2 p = rh_pair(i);
         const uint level = rh_ray_level(p.x), index = rh_ray_index(p.x);
         const bool triangle = rh_is_triangle(p.y);
         uint n = 0u, split_objects = 0u;
-        if (level == 0u && triangle) {
-            atomicAdd(rh_group_leaves, 1u);   // for rh_leaf.comp
-        } else {
+        if (!(level == 0u && triangle)) {   // (ray, triangle) pairs are rh_leaf.comp's (only the last step has them)
             const vec4 s = triangle ? rh_spheres[p.y & ~RH_TRIANGLE_FLAG] : rh_objects[p.y].sphere;
             bool may_hit, split_rays = false;
             if (level == 0u) {
@@ -86,7 +84,6 @@ void main() {
     barrier();
     if (lane == 0u) {
         rh_group_sums[rt_group_index()] = rh_group_sum;
-        if (rh_group_leaves > 0u) atomicAdd(rh_info[RH_INFO_LEAVES], rh_group_leaves);
         rh_add64(RH_INFO_OBJECT_IN, rh_object_in);
         rh_add64(RH_INFO_OBJECT_OUT, rh_object_out);
     }

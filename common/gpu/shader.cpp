@@ -355,6 +355,13 @@ void Program::dispatch(unsigned x, unsigned y, unsigned z) const {
     glDispatchCompute(x, y, z);
 }
 
+void Program::dispatch_indirect(const Buffer& args, std::size_t offset) const {
+    glUseProgram(id_);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, args.id());
+    glDispatchComputeIndirect(GLintptr(offset));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+}
+
 void Program::dispatch_threads(std::size_t n) const {
     if (n == 0) return;
     const std::size_t per_group = std::max(1u, local_size_.x);

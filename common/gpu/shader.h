@@ -23,6 +23,7 @@
 
 #include <glm/glm.hpp>
 
+#include "buffer.h"
 #include "gl_check.h"
 
 namespace rt { struct Effects; }
@@ -112,6 +113,9 @@ public:
     glm::uvec3 local_size() const { return local_size_; }
     // glUseProgram + glDispatchCompute(x, y, z).
     void dispatch(unsigned x, unsigned y = 1, unsigned z = 1) const;
+    // glDispatchComputeIndirect: the work-group counts (3 uints) are read from `args` at `offset` bytes, where an
+    // earlier pass wrote them (no read-back to the CPU).
+    void dispatch_indirect(const Buffer& args, std::size_t offset) const;
     // Enough work groups of local_size().x for n threads (1D shaders). Beyond 65535 groups the grid becomes 2D:
     // use rt_global_index() from compute.glsl to get the thread index and compare it with n.
     void dispatch_threads(std::size_t n) const;

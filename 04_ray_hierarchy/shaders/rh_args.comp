@@ -1,0 +1,18 @@
+#version 450 core
+// One thread: the indirect dispatch arguments (work groups of 64, 1, 1) of a chunk whose length only the GPU knows
+// (rh_info[rh_slot], written by the previous step's scan), so the traversal goes on without a read-back.
+#include "rh_common.glsl"
+#include "rh_info.glsl"
+
+layout(local_size_x = 1) in;
+
+layout(std430, binding = RH_BINDING_OFFSETS) writeonly buffer Args { uint rh_args[]; };
+
+uniform uint rh_slot;        // rh_info index of the chunk's length
+uniform uint rh_args_first;  // where its 3 arguments go
+
+void main() {
+    rh_args[rh_args_first] = (rh_info[rh_slot] + 63u) / 64u;
+    rh_args[rh_args_first + 1u] = 1u;
+    rh_args[rh_args_first + 2u] = 1u;
+}
