@@ -72,8 +72,13 @@ RayKeyLayout make_key_layout(glm::vec3 box_min, glm::vec3 box_max, unsigned key_
                 const double c = std::max(std::ldexp(extent[a], -int(k)), kMinCell);
                 if (c >= cell) continue;
                 unsigned total = 0;
-                for (int b = 0; b < 3; ++b) total += axis_bits(extent[b], c);
-                if (total <= origin_budget) cell = c;
+                bool fits = true;
+                for (int b = 0; b < 3; ++b) {
+                    const unsigned bits = axis_bits(extent[b], c);
+                    fits = fits && bits <= kMaxAxisBits;
+                    total += bits;
+                }
+                if (fits && total <= origin_budget) cell = c;
             }
         for (int a = 0; a < 3; ++a) layout.origin_bits[a] = axis_bits(extent[a], cell);
         layout.origin_total = layout.origin_bits.x + layout.origin_bits.y + layout.origin_bits.z;
