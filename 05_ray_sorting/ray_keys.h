@@ -26,8 +26,7 @@
 //    key (Reis's published code computes an azimuth from atan2(d.x, d.x), so its key never sees d.y).
 //  - when G + O + D > 32, the hash's lowest bits give way.
 //
-// Why this layout (measured at 160x120 on llvmpipe, local ray/triangle tests of stage 04's hierarchy, before this
-// layout; see README.md, "Measured"):
+// Why this layout (local ray/triangle tests of stage 04's hierarchy at 160x120 on llvmpipe; README.md, "Measured"):
 //  - The old key scaled the origin grid per axis to the box (2^(O/3) cells on every axis), so the cells of a flat
 //    scene were flat: builtin:spheres:N's were 1.1 cm in y and 6 to 37 cm in x and z, and the Morton order hopped
 //    between neighbouring objects. With cubic cells the same sorting cut spheres:45/150/450's local tests by 30%,
@@ -36,10 +35,11 @@
 //    direction cell from different surfaces became neighbours (whitted's reflections: 1.84 M local tests unsorted,
 //    5.97 M sorted; the hierarchy's mean level-1 node radius 0.10 -> 0.60). Origin first gave 2.31 M. A COARSE
 //    direction cell (2 + 2 bits: 16 cells of the octahedron) above a fine cubic origin code keeps the rays of one
-//    surface together within each of a few broad direction classes, which still separates mirror_box's bounces.
+//    surface together within each of a few broad direction classes (mirror_box's reflection rays, bouncing between six
+//    mirrors, want more: --direction-bits 8; README.md, "Measured").
 //  - Shadow rays towards a point light: the direction follows from the origin, so the origin goes first.
-//  Together (simulated): -7% to -51% local tests against stage 04 on all 11 benchmark scenes; the old key lost
-//  against stage 04 on 5 of them (whitted 156 -> 290 local tests per ray, spheres:450 786 -> 1501, ...).
+//  Together (measured): -0.8% to -48.9% local tests against stage 04 on all 11 benchmark scenes; the old key lost
+//  against stage 04 on 6 of them (whitted 156 -> 290 local tests per ray, spheres:450 786 -> 1501, ...).
 //
 // Every step of a key uses only additions, multiplications and comparisons (no division, no sqrt, no atan), which
 // IEEE 754 rounds the same way in C++ and GLSL: keys are equal on both, bit for bit. The layout (make_key_layout)
