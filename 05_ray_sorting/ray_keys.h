@@ -38,7 +38,7 @@
 //    surface together within each of a few broad direction classes (mirror_box's reflection rays, bouncing between six
 //    mirrors, want more: --direction-bits 8; README.md, "Measured").
 //  - Shadow rays towards a point light: the direction follows from the origin, so the origin goes first.
-//  Together (measured): -0.8% to -48.9% local tests against stage 04 on all 11 benchmark scenes; the old key lost
+//  Together (measured): -0.7% to -48.8% local tests against stage 04 on all 11 benchmark scenes; the old key lost
 //  against stage 04 on 6 of them (whitted 156 -> 290 local tests per ray, spheres:450 786 -> 1501, ...).
 //
 // Every step of a key uses only additions, multiplications and comparisons (no division, no sqrt, no atan), which

@@ -34,17 +34,24 @@ void RaySortingRenderer::add_options(CLI::App& app) {
                    "refraction rays' keys")
         ->capture_default_str()
         ->check(CLI::Range(0, 32));
-    app.add_option("--shadow-direction-bits", sort_options.shadow_direction_bits,
-                   "Of the key bits, those of the direction cell below the origin in shadow rays' keys")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 32));
-    app.parse_complete_callback([this] {
+    CLI::Option* shadow_bits =
+        app.add_option("--shadow-direction-bits", sort_options.shadow_direction_bits,
+                       "Of the key bits, those of the direction cell below the origin in shadow rays' keys (the "
+                       "default gives way to half of a --key-bits below it)")
+            ->capture_default_str()
+            ->check(CLI::Range(0, 32));
+    app.parse_complete_callback([this, shadow_bits] {
         for (auto [name, bits] : {std::pair{"--direction-bits", sort_options.direction_bits},
                                   {"--shadow-direction-bits", sort_options.shadow_direction_bits}})
-            if (bits > sort_options.key_bits)
+            if (bits > sort_options.key_bits && (name[2] == 'd' || shadow_bits->count() > 0))
                 throw CLI::ValidationError(name, std::to_string(bits) + " exceeds --key-bits " +
                                                      std::to_string(sort_options.key_bits));
     });
+}
+
+unsigned RaySortingRenderer::shadow_direction_bits() const {
+    const unsigned k = sort_options.key_bits, d = sort_options.shadow_direction_bits;
+    return d > k ? k / 2 : d;   // the default 12 under a short key: half of it, the origin still first
 }
 
 void RaySortingRenderer::compile() {
@@ -62,8 +69,8 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
     const unsigned lights = unsigned(scene.lights.size());
     layouts_[0] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, sort_options.direction_bits,
                                   lights, KeyOrder::direction_first);
-    layouts_[1] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits,
-                                  sort_options.shadow_direction_bits, lights, KeyOrder::origin_first);
+    layouts_[1] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, shadow_direction_bits(),
+                                  lights, KeyOrder::origin_first);
 }
 
 void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
@@ -120,7 +127,7 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     if (sort_options.sort) {
         nlohmann::json key = {{"key_bits", sort_options.key_bits},
                               {"direction_bits", sort_options.direction_bits},
-                              {"shadow_direction_bits", sort_options.shadow_direction_bits},
+                              {"shadow_direction_bits", shadow_direction_bits()},
                               {"groups", layouts_[0].group_count}};
         for (int k = 0; k < 2; ++k) {
             const RayKeyLayout& L = layouts_[std::size_t(k)];

@@ -19,7 +19,7 @@ struct SortOptions {
     bool sort = true;                    // --sort on|off
     unsigned key_bits = 30;              // --key-bits: origin + direction bits of a key
     unsigned direction_bits = 4;         // --direction-bits: the coarse direction cell of reflection/refraction keys
-    unsigned shadow_direction_bits = 0;  // --shadow-direction-bits: the direction cell below a shadow key's origin
+    unsigned shadow_direction_bits = 12; // --shadow-direction-bits: the direction cell below a shadow key's origin
 };
 
 class RaySortingRenderer : public RayHierarchyRenderer {
@@ -41,6 +41,7 @@ private:
         std::uint64_t batches = 0, rays = 0, chunks = 0;
     };
     void compile();
+    unsigned shadow_direction_bits() const;   // sort_options' value; above key_bits (the default, a short key) half of it
 
     std::unique_ptr<RaySorter> sorter_;   // created with the first frame (needs the context)
     std::array<RayKeyLayout, 2> layouts_{};   // per batch kind, set per frame (the scene box, the lights)
