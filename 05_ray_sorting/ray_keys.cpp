@@ -24,27 +24,77 @@ std::uint32_t interleave3(glm::uvec3 c, glm::uvec3 bits) {
 
 }  // namespace
 
+const char* key_order_name(KeyOrder order) {
+    return order == KeyOrder::direction_first ? "direction first" : "origin first";
+}
+
+namespace {
+
+constexpr unsigned kMaxAxisBits = 24;       // a float resolves 2^24 cells; keeps 1u << bits defined
+constexpr double kMinCell = 0x1p-100;       // the scale stays a normal float in [2^-100, 2^100] (ray_keys.h)
+constexpr double kMaxExtent = 0x1p100;      // a larger (or non-finite) extent counts as flat: no bits
+
+// Bits axis extent e needs with cubic cells of size c: the least b with e <= c 2^b (0 for e <= c).
+unsigned axis_bits(double e, double c) {
+    unsigned b = 0;
+    while (b <= kMaxAxisBits && e > std::ldexp(c, int(b))) ++b;
+    return b;   // kMaxAxisBits + 1: too many
+}
+
+float flush_subnormal(float x) { return std::fpclassify(x) == FP_SUBNORMAL ? 0.0f : x; }
+
+}  // namespace
+
 RayKeyLayout make_key_layout(glm::vec3 box_min, glm::vec3 box_max, unsigned key_bits, unsigned direction_bits,
-                             unsigned lights) {
+                             unsigned lights, KeyOrder order) {
     if (key_bits < 1 || key_bits > 32)
         throw std::invalid_argument("--key-bits " + std::to_string(key_bits) + " is not in 1..32");
     if (direction_bits > key_bits)
         throw std::invalid_argument("--direction-bits " + std::to_string(direction_bits) + " exceeds --key-bits " +
                                     std::to_string(key_bits));
     RayKeyLayout layout;
-    layout.box_min = box_min;
-    layout.key_bits = key_bits;
-    const unsigned origin = key_bits - direction_bits;
-    for (unsigned a = 0; a < 3; ++a) {
-        layout.origin_bits[a] = origin / 3 + (a < origin % 3 ? 1 : 0);
-        const double extent = double(box_max[a]) - double(box_min[a]);
-        layout.origin_scale[a] = extent > 0 ? float(std::ldexp(1.0, int(layout.origin_bits[a])) / extent) : 0.0f;
+    const unsigned origin_budget = key_bits - direction_bits;
+    // Extents in double (a float box's extent is finite there even when it overflows a float).
+    double extent[3];
+    for (int a = 0; a < 3; ++a) {
+        const double lo = box_min[a], hi = box_max[a];
+        extent[a] = std::isfinite(lo) && std::isfinite(hi) && hi - lo > 0 && hi - lo <= kMaxExtent ? hi - lo : 0.0;
+        layout.box_min[a] = std::isfinite(box_min[a]) ? flush_subnormal(box_min[a]) : 0.0f;
+    }
+    // The least cubic cell size whose bits fit the budget. The bit counts only change where c = extent_a / 2^k,
+    // so the least such c is one of these.
+    const double largest = std::max({extent[0], extent[1], extent[2]});
+    double cell = 0.0;
+    if (origin_budget > 0 && largest > 0) {
+        cell = std::max(largest, kMinCell);   // 0 bits on every axis: always fits
+        for (int a = 0; a < 3; ++a)
+            for (unsigned k = 1; k <= kMaxAxisBits && extent[a] > 0; ++k) {
+                const double c = std::max(std::ldexp(extent[a], -int(k)), kMinCell);
+                if (c >= cell) continue;
+                unsigned total = 0;
+                bool fits = true;
+                for (int b = 0; b < 3; ++b) {
+                    const unsigned bits = axis_bits(extent[b], c);
+                    fits = fits && bits <= kMaxAxisBits;
+                    total += bits;
+                }
+                if (fits && total <= origin_budget) cell = c;
+            }
+        for (int a = 0; a < 3; ++a) layout.origin_bits[a] = axis_bits(extent[a], cell);
+        layout.origin_total = layout.origin_bits.x + layout.origin_bits.y + layout.origin_bits.z;
+    }
+    if (layout.origin_total > 0) {
+        layout.origin_scale = float(1.0 / cell);
+        layout.cell_size = 1.0 / double(layout.origin_scale);
     }
     layout.direction_bits = {(direction_bits + 1) / 2, direction_bits / 2};
+    layout.direction_total = direction_bits;
+    layout.key_bits = layout.origin_total + layout.direction_total;
+    layout.direction_major = order == KeyOrder::direction_first;
     layout.group_count = 3 + lights;
     const unsigned group_bits = unsigned(std::bit_width(layout.group_count - 1));
-    layout.hash_bits = std::min(key_bits, 32 - group_bits);
-    layout.hash_drop = key_bits - layout.hash_bits;
+    layout.hash_bits = std::min(layout.key_bits, 32 - group_bits);
+    layout.hash_drop = layout.key_bits - layout.hash_bits;
     layout.sort_bits = group_bits + layout.hash_bits;
     return layout;
 }
@@ -75,10 +125,15 @@ std::uint32_t ray_group(const gpu::WavefrontRay& ray, const RayKeyLayout& layout
     return std::min(group, layout.group_count - 1);
 }
 
-std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) {
+std::uint32_t origin_code(glm::vec3 origin, const RayKeyLayout& layout) {
     glm::uvec3 oc;
     for (int a = 0; a < 3; ++a)
-        oc[a] = quantize_axis(ray.origin[a], layout.box_min[a], layout.origin_scale[a], layout.origin_bits[a]);
+        oc[a] = quantize_axis(origin[a], layout.box_min[a], layout.origin_scale, layout.origin_bits[a]);
+    return interleave3(oc, layout.origin_bits);
+}
+
+std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) {
+    const std::uint32_t oc = origin_code(ray.origin, layout);
     const glm::vec3 d = ray.direction;
     const float s = (std::abs(d.x) + std::abs(d.y)) + std::abs(d.z);
     float nu = d.x, nv = d.y;
@@ -88,12 +143,9 @@ std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) 
     }
     const glm::uvec3 dc{octahedral_cell(nu, s, layout.direction_bits.x), octahedral_cell(nv, s, layout.direction_bits.y),
                         0u};
-    const unsigned direction_total = layout.direction_bits.x + layout.direction_bits.y;
-    const std::uint32_t origin_code = interleave3(oc, layout.origin_bits);
     const std::uint32_t direction_code = interleave3(dc, {layout.direction_bits, 0u});
-    const std::uint32_t hash = layout.direction_major
-                                   ? shift_left(direction_code, layout.key_bits - direction_total) | origin_code
-                                   : shift_left(origin_code, direction_total) | direction_code;
+    const std::uint32_t hash = layout.direction_major ? shift_left(direction_code, layout.origin_total) | oc
+                                                      : shift_left(oc, layout.direction_total) | direction_code;
     const std::uint32_t kept = layout.hash_drop >= 32 ? 0u : hash >> layout.hash_drop;
     return shift_left(ray_group(ray, layout), layout.hash_bits) | kept;
 }

@@ -3,32 +3,52 @@
 // Decompression"). The GPU does the same in shaders/ (ray_sort.h); ray_sort_test.cpp checks that both agree bit for
 // bit, so this file is also the readable specification of the GPU passes.
 //
-// The key of a ray, 32 bits, from the most significant bit down:
+// The key of a ray, 32 bits, from the most significant bit down, in one of two orders (KeyOrder, chosen per batch
+// kind by the renderer):
 //
-//   [ group : G bits ][ origin cell, Morton order : O bits ][ direction cell, Morton order : D bits ]
-//
-// or, with direction_major, the direction cell above the origin cell. Origin first suits shadow rays (towards a
-// point light the direction follows from the origin); direction first suits reflection and refraction rays, whose
-// neighbours on one surface may come from very different paths (in builtin:mirror_box, origin-major sorting puts
-// rays of unrelated directions side by side and the hierarchy's cones open: 10x the local tests of queue order).
+//   origin first (shadow rays):                  [ group : G ][ origin cell : O ][ direction cell : D ]
+//   direction first (reflection, refraction):    [ group : G ][ coarse direction cell : D ][ origin cell : O ]
 //
 //  - group: primary 0, reflection 1, refraction 2, shadow ray towards light l: 3 + l. G = the bits 3 + lights
 //    values need. Rays of different groups never share a key, and groups sort in this order, so the sorted rays of
 //    a group stay in one range (the queues of the wavefront pipeline hold the groups in the same order).
-//  - origin: the scene box split into a virtual grid of 2^ox x 2^oy x 2^oz cells (O = ox + oy + oz, split as evenly as
-//    possible, x first); a coordinate maps to floor((o - box_min) * 2^bits / extent), clamped to the grid.
+//  - origin: a virtual grid of CUBIC cells over the scene box: one cell size c on every axis, and per axis as many
+//    bits as its extent needs, b_a = the least b >= 0 with extent_a <= c 2^b (a flat or thin axis gets few bits or
+//    none). c is the least size with b_x + b_y + b_z <= O (and b_a <= 24): the finest cubic grid the budget allows.
+//    A coordinate maps to floor((o - box_min) * s), s = 1 / c rounded to a float once (the same on every axis),
+//    clamped to the grid; the cells are interleaved in Morton order (axes with fewer bits drop out of the top
+//    levels), so nearby cells get nearby codes. O = key_bits - direction_bits; where cubic cells cannot use all of
+//    O (at most 2 bits are lost to rounding each axis' count up to a power of two), the key is shorter.
 //  - direction: octahedral mapping (Meyer et al. 2010): d / (|dx| + |dy| + |dz|) lies on the diamond |u| + |v| +
 //    |w| = 1; the upper half (dz >= 0) projects to (u, v), the lower half folds over the diamond's edges to
 //    ((1 - |v|) sign(u), (1 - |u|) sign(v)). Both coordinates are quantized to 2^du and 2^dv cells (D = du + dv).
 //    dx and dy move (u, v) directly, dz moves both through the sum and picks the half: every component reaches the
 //    key (Reis's published code computes an azimuth from atan2(d.x, d.x), so its key never sees d.y).
-//  - key_bits = O + D; when G + key_bits > 32, the hash's lowest bits give way (a coarser direction first).
+//  - when G + O + D > 32, the hash's lowest bits give way.
 //
-// Every step uses only additions, multiplications and comparisons (no division, no sqrt, no atan), which IEEE 754
-// rounds the same way in C++ and GLSL: keys are equal on both, bit for bit.
+// Why this layout (local ray/triangle tests of stage 04's hierarchy at 160x120 on llvmpipe; README.md, "Measured"):
+//  - The old key scaled the origin grid per axis to the box (2^(O/3) cells on every axis), so the cells of a flat
+//    scene were flat: builtin:spheres:N's were 1.1 cm in y and 6 to 37 cm in x and z, and the Morton order hopped
+//    between neighbouring objects. With cubic cells the same sorting cut spheres:45/150/450's local tests by 30%,
+//    47% and 30% against queue order.
+//  - The old key put the direction first for reflection and refraction rays with 6 + 6 octahedral bits: rays of one
+//    direction cell from different surfaces became neighbours (whitted's reflections: 1.84 M local tests unsorted,
+//    5.97 M sorted; the hierarchy's mean level-1 node radius 0.10 -> 0.60). Origin first gave 2.31 M. A COARSE
+//    direction cell (2 + 2 bits: 16 cells of the octahedron) above a fine cubic origin code keeps the rays of one
+//    surface together within each of a few broad direction classes (mirror_box's reflection rays, bouncing between six
+//    mirrors, want more: --direction-bits 8; README.md, "Measured").
+//  - Shadow rays towards a point light: the direction follows from the origin, so the origin goes first.
+//  Together (measured): -0.7% to -48.8% local tests against stage 04 on all 11 benchmark scenes; the old key lost
+//  against stage 04 on 6 of them (whitted 156 -> 290 local tests per ray, spheres:450 786 -> 1501, ...).
+//
+// Every step of a key uses only additions, multiplications and comparisons (no division, no sqrt, no atan), which
+// IEEE 754 rounds the same way in C++ and GLSL: keys are equal on both, bit for bit. The layout (make_key_layout)
+// keeps every shift below 32 and the scale a normal float in [2^-100, 2^100] (with box_min's subnormals flushed to
+// zero), so a GPU that flushes subnormals still gets the CPU's cells.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -37,22 +57,30 @@
 
 namespace rt {
 
+enum class KeyOrder { origin_first, direction_first };
+const char* key_order_name(KeyOrder order);   // "origin first", "direction first"
+
 struct RayKeyLayout {
     glm::vec3 box_min{0.0f};
-    glm::vec3 origin_scale{0.0f};    // cells per unit along each axis (0 for a flat axis)
-    glm::uvec3 origin_bits{0u};
+    float origin_scale = 0.0f;       // cells per unit, the same on every axis (1 / cell size as a float; 0: none)
+    double cell_size = 0.0;          // the cubic cell's edge, 1 / origin_scale (0 when no axis has bits)
+    glm::uvec3 origin_bits{0u};      // bits per axis, from each axis' extent
     glm::uvec2 direction_bits{0u};   // u, v
+    unsigned origin_total = 0;       // origin_bits.x + .y + .z
+    unsigned direction_total = 0;    // direction_bits.x + .y
     unsigned hash_drop = 0;          // low hash bits given up for the group
     unsigned hash_bits = 0;          // hash bits kept
     unsigned group_count = 1;        // 3 + lights
-    unsigned key_bits = 0;           // origin + direction bits
-    bool direction_major = false;    // the direction cell above the origin cell (set per batch kind)
+    unsigned key_bits = 0;           // origin_total + direction_total: the hash's length before the drop
+    bool direction_major = false;    // the direction cell above the origin cell (KeyOrder::direction_first)
     unsigned sort_bits = 0;          // group bits + hash_bits: the bits the radix sort looks at
 };
 
 // key_bits (1..32): origin + direction bits; direction_bits (0..key_bits). Throws std::invalid_argument otherwise.
+// Any box works: a flat axis gets no bits, a point-like, non-finite or absurdly large box none at all (every ray
+// then has origin cell 0).
 RayKeyLayout make_key_layout(glm::vec3 box_min, glm::vec3 box_max, unsigned key_bits, unsigned direction_bits,
-                             unsigned lights);
+                             unsigned lights, KeyOrder order = KeyOrder::origin_first);
 
 std::uint32_t ray_group(const gpu::WavefrontRay& ray, const RayKeyLayout& layout);
 std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout);
@@ -60,6 +88,7 @@ std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout);
 // The pieces of the key, for tests.
 std::uint32_t quantize_axis(float o, float box_min, float scale, unsigned bits);
 std::uint32_t octahedral_cell(float n, float s, unsigned bits);
+std::uint32_t origin_code(glm::vec3 origin, const RayKeyLayout& layout);   // the Morton code of the origin cell
 
 // Compression: one chunk per run of equal keys.
 struct RayChunks {

@@ -45,11 +45,11 @@ void RaySorter::compute_keys(const gpu::Buffer& rays, std::size_t first, std::si
     glProgramUniform3ui(p.id(), p.uniform_location("rs_origin_bits"), layout.origin_bits.x, layout.origin_bits.y,
                         layout.origin_bits.z);
     p.set("rs_direction_bits", layout.direction_bits);
-    p.set("rs_direction_total", layout.direction_bits.x + layout.direction_bits.y);
+    p.set("rs_origin_total", layout.origin_total);
+    p.set("rs_direction_total", layout.direction_total);
     p.set("rs_hash_drop", layout.hash_drop);
     p.set("rs_hash_bits", layout.hash_bits);
     p.set("rs_group_count", layout.group_count);
-    p.set("rs_key_bits", layout.key_bits);
     p.set("rs_direction_major", layout.direction_major ? 1u : 0u);
     p.set("rs_first", unsigned(first));
     p.set("rs_count", unsigned(count));

@@ -32,7 +32,7 @@ class RaySorter {
 public:
     RaySorter();   // needs a current context (compiles the passes)
 
-    // The key layout rays are hashed with (set it per frame: the scene box and light count).
+    // The key layout rays are hashed with (the renderer sets it per batch kind: the scene box, the lights, the order).
     RayKeyLayout layout;
 
     // Keys of rays[first, first + count) (WavefrontRay) into keys()[0, count), then their sorted order into

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -55,6 +56,66 @@ TEST(RaySorter, KeysEqualTheCpuKeysBitForBit) {
                 << "key bits " << key_bits << ", direction bits " << direction_bits << ", direction major "
                 << direction_major;
         }
+    }
+}
+
+// Rays a key must survive: NaN, infinite, zero and subnormal directions and origins, origins far outside the box,
+// on its faces and on the cell borders of the layouts below.
+std::vector<gpu::WavefrontRay> adversarial_rays(unsigned lights) {
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float big = std::numeric_limits<float>::max(), sub = 1e-40f;
+    const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 0.25f, 1.25f, -0.5f, 3.0f / 128, 1e-7f, sub, -sub, big,
+                            -big, inf, -inf, nan, 1e6f, 0.1f, 0.999999f};
+    std::mt19937 rng(17);
+    std::vector<gpu::WavefrontRay> rays;
+    const std::size_t n = std::size(values);
+    for (std::size_t i = 0; i < 6000; ++i) {
+        gpu::WavefrontRay r{};
+        for (int a = 0; a < 3; ++a) {
+            r.origin[a] = values[rng() % n];
+            r.direction[a] = values[rng() % n];
+        }
+        r.depth_kind = 1u | (std::uint32_t(rng() % 4) << 16);
+        r.light = std::uint32_t(rng() % (lights + 1));
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+// Cubic cells, both orders, and the boxes the layout has to cope with: the GPU keys equal the CPU's bit for bit.
+TEST(RaySorter, CubicKeysOfEveryOrderAndAbsurdBoxesEqualTheCpuKeys) {
+    gpu::test_context();
+    RaySorter sorter;
+    const float inf = std::numeric_limits<float>::infinity(), big = std::numeric_limits<float>::max();
+    struct Box {
+        glm::vec3 lo, hi;
+    };
+    const Box boxes[] = {{{-1, -0.5f, -1}, {1, 0.5f, 1.25f}},   // the random rays' box
+                         {{-10, 0, -10}, {10, 0.25f, 10}},      // thin in y
+                         {{0, 0.5f, 0}, {1, 0.5f, 1}},          // flat in y
+                         {{0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}},   // a point
+                         {{0, 0, 0}, {1e-30f, 1e-30f, 1e-30f}},      // tiny: scale 2^100
+                         {{1e-40f, 0, 0}, {1, 1, 1}},                // a subnormal corner
+                         {{1e6f, 1e6f, 1e6f}, {1e6f + 1, 1e6f + 1, 1e6f + 1}},   // far from the origin
+                         {{-1e20f, 0, 0}, {1e20f, 1, 1}},                         // huge in x
+                         {{-big, -big, -big}, {big, big, big}},
+                         {{-inf, 0, 0}, {inf, 1, 1}}};
+    for (unsigned lights : {1u, 40u}) {   // 40 lights: 6 group bits, the hash's low bits give way
+        std::vector<gpu::WavefrontRay> rays = adversarial_rays(lights);
+        const std::vector<gpu::WavefrontRay> more = random_rays(4000, 9, lights);
+        rays.insert(rays.end(), more.begin(), more.end());
+        const Buffer buffer = Buffer::from(rays);
+        for (const Box& b : boxes)
+            for (auto [key_bits, direction_bits] : {std::pair{30u, 4u}, {30u, 0u}, {32u, 6u}, {9u, 3u}, {32u, 32u}})
+                for (KeyOrder order : {KeyOrder::origin_first, KeyOrder::direction_first}) {
+                    sorter.layout = make_key_layout(b.lo, b.hi, key_bits, direction_bits, lights, order);
+                    sorter.compute_keys(buffer, 0, rays.size());
+                    ASSERT_EQ(sorter.keys().download<std::uint32_t>(rays.size()),
+                              cpu_keys(rays, sorter.layout, 0, rays.size()))
+                        << "box " << b.lo.x << " " << b.lo.y << " " << b.lo.z << " .. " << b.hi.x << " " << b.hi.y
+                        << " " << b.hi.z << ", key bits " << key_bits << ", direction bits " << direction_bits
+                        << ", " << key_order_name(order) << ", lights " << lights;
+                }
     }
 }
 

@@ -25,18 +25,33 @@ void RaySortingRenderer::add_options(CLI::App& app) {
            "--sort", [this](const std::string& s) { sort_options.sort = s == "on"; },
            "Sort each batch of rays before building the hierarchy: on (default) or off (exactly stage 04)")
         ->check(CLI::IsMember({"on", "off"}));
-    app.add_option("--key-bits", sort_options.key_bits, "Bits of a ray's key for its origin and direction cells")
+    app.add_option("--key-bits", sort_options.key_bits,
+                   "Bits of a ray's key for its origin cell (cubic cells over the scene box) and direction cell")
         ->capture_default_str()
         ->check(CLI::Range(1, 32));
-    app.add_option("--direction-bits", sort_options.direction_bits, "Of the key bits, those of the direction cell")
+    app.add_option("--direction-bits", sort_options.direction_bits,
+                   "Of the key bits, those of the coarse direction cell above the origin in reflection and "
+                   "refraction rays' keys")
         ->capture_default_str()
         ->check(CLI::Range(0, 32));
-    app.parse_complete_callback([this] {
-        if (sort_options.direction_bits > sort_options.key_bits)
-            throw CLI::ValidationError("--direction-bits", std::to_string(sort_options.direction_bits) +
-                                                               " exceeds --key-bits " +
-                                                               std::to_string(sort_options.key_bits));
+    CLI::Option* shadow_bits =
+        app.add_option("--shadow-direction-bits", sort_options.shadow_direction_bits,
+                       "Of the key bits, those of the direction cell below the origin in shadow rays' keys (the "
+                       "default gives way to half of a --key-bits below it)")
+            ->capture_default_str()
+            ->check(CLI::Range(0, 32));
+    app.parse_complete_callback([this, shadow_bits] {
+        for (auto [name, bits] : {std::pair{"--direction-bits", sort_options.direction_bits},
+                                  {"--shadow-direction-bits", sort_options.shadow_direction_bits}})
+            if (bits > sort_options.key_bits && (name[2] == 'd' || shadow_bits->count() > 0))
+                throw CLI::ValidationError(name, std::to_string(bits) + " exceeds --key-bits " +
+                                                     std::to_string(sort_options.key_bits));
     });
+}
+
+unsigned RaySortingRenderer::shadow_direction_bits() const {
+    const unsigned k = sort_options.key_bits, d = sort_options.shadow_direction_bits;
+    return d > k ? k / 2 : d;   // the default 12 under a short key: half of it, the origin still first
 }
 
 void RaySortingRenderer::compile() {
@@ -51,8 +66,11 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
     batch_stats_ = {};
     if (!sort_options.sort) return;
     compile();
-    sorter_->layout = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits,
-                                      sort_options.direction_bits, unsigned(scene.lights.size()));
+    const unsigned lights = unsigned(scene.lights.size());
+    layouts_[0] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, sort_options.direction_bits,
+                                  lights, KeyOrder::direction_first);
+    layouts_[1] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, shadow_direction_bits(),
+                                  lights, KeyOrder::origin_first);
 }
 
 void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
@@ -65,7 +83,7 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     BatchStats& stats = batch_stats_[shadow ? 1 : 0];
     {
         auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
-        sorter_->layout.direction_major = !shadow;   // ray_keys.h: which order suits which rays
+        sorter_->layout = layouts_[shadow ? 1 : 0];   // ray_keys.h: which order suits which rays
         sorter_->sort(in.rays, in.first, n, order_);
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
         gather_.set("rs_count", unsigned(n));
@@ -107,15 +125,22 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     RayHierarchyRenderer::add_stage_stats(result);
     nlohmann::json rs = {{"sort", sort_options.sort}};
     if (sort_options.sort) {
-        const RayKeyLayout& L = sorter_->layout;
-        rs["key"] = {{"key_bits", sort_options.key_bits},
-                     {"direction_bits", sort_options.direction_bits},
-                     {"origin_bits", {L.origin_bits.x, L.origin_bits.y, L.origin_bits.z}},
-                     {"octahedral_bits", {L.direction_bits.x, L.direction_bits.y}},
-                     {"groups", L.group_count},
-                     {"hash_bits_dropped", L.hash_drop},
-                     {"sort_bits", L.sort_bits},
-                     {"order", {{"shadow", "origin first"}, {"trace", "direction first"}}}};
+        nlohmann::json key = {{"key_bits", sort_options.key_bits},
+                              {"direction_bits", sort_options.direction_bits},
+                              {"shadow_direction_bits", shadow_direction_bits()},
+                              {"groups", layouts_[0].group_count}};
+        for (int k = 0; k < 2; ++k) {
+            const RayKeyLayout& L = layouts_[std::size_t(k)];
+            key[kBatchKind[k]] = {
+                {"order", key_order_name(L.direction_major ? KeyOrder::direction_first : KeyOrder::origin_first)},
+                {"cell_size", L.cell_size},
+                {"origin_bits", {L.origin_bits.x, L.origin_bits.y, L.origin_bits.z}},
+                {"octahedral_bits", {L.direction_bits.x, L.direction_bits.y}},
+                {"bits_used", L.key_bits},
+                {"hash_bits_dropped", L.hash_drop},
+                {"sort_bits", L.sort_bits}};
+        }
+        rs["key"] = key;
         const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
         nlohmann::json batches = nlohmann::json::object();
         for (int k = 0; k < 2; ++k) {

@@ -13,10 +13,13 @@
 
 namespace rt {
 
+// The key of each batch kind (ray_keys.h): reflection and refraction rays [coarse direction | cubic origin], shadow
+// rays [cubic origin | direction].
 struct SortOptions {
-    bool sort = true;             // --sort on|off
-    unsigned key_bits = 30;       // --key-bits: origin + direction bits of the key (ray_keys.h)
-    unsigned direction_bits = 12; // --direction-bits: of them, the direction's
+    bool sort = true;                    // --sort on|off
+    unsigned key_bits = 30;              // --key-bits: origin + direction bits of a key
+    unsigned direction_bits = 4;         // --direction-bits: the coarse direction cell of reflection/refraction keys
+    unsigned shadow_direction_bits = 12; // --shadow-direction-bits: the direction cell below a shadow key's origin
 };
 
 class RaySortingRenderer : public RayHierarchyRenderer {
@@ -24,7 +27,7 @@ public:
     RaySortingRenderer();
     ~RaySortingRenderer() override;
 
-    void add_options(CLI::App& app) override;   // stage 04's, --sort, --key-bits, --direction-bits
+    void add_options(CLI::App& app) override;   // stage 04's, --sort, --key-bits, --[shadow-]direction-bits
     SortOptions sort_options;
 
 protected:
@@ -38,8 +41,10 @@ private:
         std::uint64_t batches = 0, rays = 0, chunks = 0;
     };
     void compile();
+    unsigned shadow_direction_bits() const;   // sort_options' value; above key_bits (the default, a short key) half of it
 
     std::unique_ptr<RaySorter> sorter_;   // created with the first frame (needs the context)
+    std::array<RayKeyLayout, 2> layouts_{};   // per batch kind, set per frame (the scene box, the lights)
     gpu::Program gather_, scatter_;
     gpu::Buffer order_, sorted_rays_, sorted_results_;
     std::array<BatchStats, 2> batch_stats_{};

@@ -23,15 +23,15 @@ struct RsRay {
 
 // The key's layout (RayKeyLayout in ray_keys.h, which sets these uniforms and documents the mapping).
 uniform vec3 rs_box_min;
-uniform vec3 rs_origin_scale;      // cells per unit along each axis (0 for a flat axis)
-uniform uvec3 rs_origin_bits;      // bits of each axis' cell index
+uniform float rs_origin_scale;     // cells per unit, the same on every axis: the cells are cubes
+uniform uvec3 rs_origin_bits;      // bits of each axis' cell index (0 for a flat axis)
+uniform uint rs_origin_total;      // rs_origin_bits.x + .y + .z
 uniform uvec2 rs_direction_bits;   // bits of the octahedral u and v cells
 uniform uint rs_direction_total;   // rs_direction_bits.x + rs_direction_bits.y
 uniform uint rs_hash_drop;         // low hash bits given up so the group fits in 32 bits
 uniform uint rs_hash_bits;         // hash bits kept (above them: the group)
 uniform uint rs_group_count;       // 3 + lights
-uniform uint rs_key_bits;          // origin + direction bits
-uniform uint rs_direction_major;   // 1: the direction cell above the origin cell
+uniform uint rs_direction_major;   // 1: the direction cell above the origin cell (reflection, refraction)
 
 // ray_keys.cpp: quantize_axis. Cell of one origin coordinate in the virtual grid; outside the box clamps.
 uint rs_quantize_axis(float o, float box_min, float scale, uint bits) {
@@ -76,13 +76,15 @@ uint rs_group(RsRay r) {
 }
 
 uint rs_ray_key(RsRay r) {
-    // BEGIN EXERCISE 05.ray_key: quantize the origin in the virtual grid (rs_quantize_axis per axis) and the direction
-    // by the octahedral map (d / (|dx| + |dy| + |dz|), the lower hemisphere folded; rs_octahedral_cell), interleave
-    // each (rs_interleave3), put the direction code above the origin code or below it (rs_direction_major), keep the
-    // top bits, and the ray's group (rs_group) above them all. Must equal ray_keys.cpp's key bit for bit.
-    const uvec3 oc = uvec3(rs_quantize_axis(r.origin.x, rs_box_min.x, rs_origin_scale.x, rs_origin_bits.x),
-                           rs_quantize_axis(r.origin.y, rs_box_min.y, rs_origin_scale.y, rs_origin_bits.y),
-                           rs_quantize_axis(r.origin.z, rs_box_min.z, rs_origin_scale.z, rs_origin_bits.z));
+    // BEGIN EXERCISE 05.ray_key: quantize the origin in the virtual grid of cubic cells (rs_quantize_axis per
+    // axis, the one scale rs_origin_scale on all three, each axis its own bits) and the direction by the octahedral
+    // map (d / (|dx| + |dy| + |dz|), the lower hemisphere folded; rs_octahedral_cell), interleave each
+    // (rs_interleave3), put the direction code above the origin code (rs_direction_major: reflection and refraction
+    // rays, a coarse direction cell) or below it (shadow rays), keep the top bits, and the ray's group (rs_group)
+    // above them all. Must equal ray_keys.cpp's key bit for bit.
+    const uvec3 oc = uvec3(rs_quantize_axis(r.origin.x, rs_box_min.x, rs_origin_scale, rs_origin_bits.x),
+                           rs_quantize_axis(r.origin.y, rs_box_min.y, rs_origin_scale, rs_origin_bits.y),
+                           rs_quantize_axis(r.origin.z, rs_box_min.z, rs_origin_scale, rs_origin_bits.z));
     const vec3 d = r.direction;
     precise float s = (abs(d.x) + abs(d.y)) + abs(d.z);
     precise float nu = d.x;
@@ -95,7 +97,7 @@ uint rs_ray_key(RsRay r) {
     const uint origin_code = rs_interleave3(oc, rs_origin_bits);
     const uint direction_code = rs_interleave3(dc, uvec3(rs_direction_bits, 0u));
     const uint hash = rs_direction_major != 0u
-                          ? rs_shift_left(direction_code, rs_key_bits - rs_direction_total) | origin_code
+                          ? rs_shift_left(direction_code, rs_origin_total) | origin_code
                           : rs_shift_left(origin_code, rs_direction_total) | direction_code;
     const uint kept = rs_hash_drop >= 32u ? 0u : hash >> rs_hash_drop;
     return rs_shift_left(rs_group(r), rs_hash_bits) | kept;
