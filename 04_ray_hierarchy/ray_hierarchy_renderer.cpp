@@ -110,6 +110,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
             {"levels", levels},
             {"object_level", {{"pairs_in", s.object_pairs_in}, {"pairs_out", s.object_pairs_out}}},
             {"node_tests", s.node_tests()},
+            {"leaf_pairs", s.leaf_pairs},
             {"sphere_tests", s.sphere_tests},
             {"local_tests", s.local_tests},
             {"fold_tests", s.fold_tests},
