@@ -75,101 +75,6 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     key_ = key;
 }
 
-void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<ObjectRange>& objects,
-                              const Bounds& bounds) {
-    triangles_ = scene.triangle_count();
-    objects_ = 0;
-    object_nodes_ = 0;
-    object_level_first_.clear();
-    object_level_count_.clear();
-    if (!spheres_) spheres_ = Program::compute("04_ray_hierarchy/rh_spheres.comp");
-    order_.reserve(4);   // bound by every expansion, read only with --objects tree
-    objects_buf_.reserve(sizeof(ObjectNode));
-    spheres_buf_.reserve(std::max<std::size_t>(triangles_, 1) * sizeof(glm::vec4));
-    scene.bind();
-    spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
-    if (triangles_ == 0) return;
-    spheres_.set("rh_mode", 0u);
-    spheres_.set("rh_count", unsigned(triangles_));
-    spheres_.dispatch_threads(triangles_);
-    barrier();
-    if (options.objects == ObjectMode::meshes && !objects.empty()) {
-        std::vector<ObjectNode> nodes(objects.size());
-        for (std::size_t i = 0; i < objects.size(); ++i) {
-            nodes[i].first = objects[i].first;
-            nodes[i].count = objects[i].count;
-        }
-        objects_buf_.reserve(nodes.size() * sizeof(ObjectNode));
-        objects_buf_.upload(nodes.data(), nodes.size() * sizeof(ObjectNode));
-        objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-        spheres_.set("rh_mode", 1u);
-        spheres_.set("rh_count", unsigned(nodes.size()));
-        spheres_.dispatch_threads(nodes.size());
-        barrier();
-        objects_ = object_nodes_ = nodes.size();
-        object_level_first_ = {0};
-        object_level_count_ = {std::uint32_t(nodes.size())};
-    } else if (options.objects == ObjectMode::tree) {
-        build_tree(bounds);
-    }
-    gpu::check_gl("04_ray_hierarchy: bounding spheres and objects");
-}
-
-// object_tree.h: Morton codes of the spheres' centres, sorted; clusters; levels up to a single root.
-void GpuRayHierarchy::build_tree(const Bounds& bounds) {
-    if (!tree_) tree_ = Program::compute("04_ray_hierarchy/ot_build.comp");
-    if (!radix_) radix_ = std::make_unique<gpu::RadixSort>();
-    const std::uint32_t n = std::uint32_t(triangles_);
-    keys_.reserve(std::size_t(n) * 4);
-    order_.reserve(std::size_t(n) * 4);
-    spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
-    keys_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
-    order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
-    tree_.set("ot_mode", 0u);
-    tree_.set("ot_count", n);
-    tree_.set("ot_box_min", bounds.lo);
-    tree_.set("ot_scale", morton_scale(bounds.lo, bounds.hi));
-    tree_.dispatch_threads(n);
-    barrier();
-    radix_->sort(keys_, order_, n, 3 * kMortonAxisBits);
-    // The levels' sizes follow from n alone: level 1 holds ceil(n / kClusterSize) clusters, each level above
-    // ceil(below / kObjectBranching) nodes, up to one.
-    std::uint32_t total = 0;
-    for (std::uint32_t count = (n + kClusterSize - 1) / kClusterSize;; count = (count + kObjectBranching - 1) / kObjectBranching) {
-        object_level_first_.push_back(total);
-        object_level_count_.push_back(count);
-        total += count;
-        if (count <= 1) break;
-    }
-    objects_buf_.reserve(std::size_t(total) * sizeof(ObjectNode));
-    spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
-    objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-    order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
-    for (std::size_t l = 0; l < object_level_count_.size(); ++l) {
-        tree_.set("ot_mode", l == 0 ? 1u : 2u);
-        tree_.set("ot_count", object_level_count_[l]);
-        tree_.set("ot_triangles", n);
-        tree_.set("ot_child_first", l == 0 ? 0u : object_level_first_[l - 1]);
-        tree_.set("ot_child_count", l == 0 ? n : object_level_count_[l - 1]);
-        tree_.set("ot_node_first", object_level_first_[l]);
-        tree_.set("ot_level", unsigned(l + 1));
-        tree_.set("ot_fanout", l == 0 ? kClusterSize : kObjectBranching);
-        tree_.dispatch_threads(object_level_count_[l]);
-        barrier();
-    }
-    object_nodes_ = total;
-    objects_ = object_level_count_.back();
-}
-
-ObjectTree GpuRayHierarchy::download_tree() const {
-    ObjectTree tree;
-    tree.level_first = object_level_first_;
-    tree.level_count = object_level_count_;
-    tree.nodes = objects_buf_.download<ObjectNode>(object_nodes_);
-    tree.order = options.objects == ObjectMode::tree ? order_.download<std::uint32_t>(triangles_) : std::vector<std::uint32_t>{};
-    return tree;
-}
-
 std::uint32_t GpuRayHierarchy::read_info(int index) {
     ++syncs;
     return info_.download_value<std::uint32_t>(index);
@@ -402,7 +307,7 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
     // (ray, triangle) pairs, and only it does. They go to the leaves; the other steps are tested and expanded.
     if (step >= max_depth_) {
         ++chunks;
-        leaves(step, count, count, on_gpu);
+        leaves(step, count, on_gpu);
         return;
     }
     const bool chain = std::uint64_t(count) * most <= capacity_;
@@ -419,16 +324,10 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
         group_sums_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
         set_source(test_, src);
-        test_.set("rh_count", count);
-        test_.set("rh_count_slot", on_gpu ? slot : 0u);
         test_.set("rh_group_first", unsigned(in_->first + group_.first));
         test_.set("rh_branching", b);
         test_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
-        if (on_gpu)
-            test_.dispatch_indirect(args_, std::size_t(step) * 12);
-        else
-            test_.dispatch_threads(count);
-        barrier();
+        dispatch_chunk(test_, step, count, on_gpu);
         const std::size_t groups = (std::size_t(count) + 63) / 64;
         compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);
         if (!chain) {
@@ -461,6 +360,18 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
     }
 }
 
+// A pass over a chunk of `count` pairs (rh_pairs.glsl: rh_chunk_count): dispatched for them, or, on_gpu, indirectly
+// for the length the GPU wrote to the step's slot (count is then only a bound).
+void GpuRayHierarchy::dispatch_chunk(const Program& p, int step, std::uint32_t count, bool on_gpu) const {
+    p.set("rh_count", count);
+    p.set("rh_count_slot", on_gpu ? kInfoStepCount + std::uint32_t(step) : 0u);
+    if (on_gpu)
+        p.dispatch_indirect(args_, std::size_t(step) * 12);
+    else
+        p.dispatch_threads(count);
+    barrier();
+}
+
 // The children of a chunk's survivors with outputs in [w0, w0 + w) to pairs_[step + 1].
 void GpuRayHierarchy::expand(int step, const Source& src, std::uint32_t count, bool on_gpu, std::uint32_t w0,
                              std::uint32_t w) {
@@ -476,22 +387,17 @@ void GpuRayHierarchy::expand(int step, const Source& src, std::uint32_t count, b
     offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 6);
     info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
     set_source(expand_, src);
-    expand_.set("rh_count", count);
-    expand_.set("rh_count_slot", on_gpu ? kInfoStepCount + std::uint32_t(step) : 0u);
     expand_.set("rh_window_first", w0);
     expand_.set("rh_window_count", w);
     expand_.set("rh_branching", unsigned(options.branching));
     expand_.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
-    if (on_gpu)
-        expand_.dispatch_indirect(args_, std::size_t(step) * 12);
-    else
-        expand_.dispatch_threads(count);
-    barrier();
+    dispatch_chunk(expand_, step, count, on_gpu);
     ++windows;
 }
 
-// The chunk's (ray, triangle) pairs (leaf_pairs of its count pairs) to rh_leaf.comp.
-void GpuRayHierarchy::leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs, bool on_gpu) {
+// The last step's chunk of `count` (ray, triangle) pairs (a bound of them, on_gpu) to rh_leaf.comp.
+void GpuRayHierarchy::leaves(int step, std::uint32_t count, bool on_gpu) {
+    const std::uint32_t leaf_pairs = count;
     if (shadow_) {
         leaf_dispatch(step, 0, count, on_gpu);
         return;
@@ -552,16 +458,10 @@ void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t
     }
     in.wavefront.set_uniforms(p);
     set_source(p, Source{false, first, 0, 0, 0, 0});
-    p.set("rh_count", count);
-    p.set("rh_count_slot", on_gpu ? kInfoStepCount + std::uint32_t(step) : 0u);
     p.set("rh_group_first", unsigned(in.first + group_.first));
     p.set("rh_batch_first", unsigned(in.first));
     p.set("rh_sphere_test", options.sphere_test ? 1u : 0u);
-    if (on_gpu)
-        p.dispatch_indirect(args_, std::size_t(step) * 12);
-    else
-        p.dispatch_threads(count);
-    barrier();
+    dispatch_chunk(p, step, count, on_gpu);
 }
 
 void GpuRayHierarchy::prune_hits() {

@@ -113,10 +113,11 @@ private:
     std::vector<Group> find_groups(const gpu::BatchTraceInputs& in);
     int build(const gpu::BatchTraceInputs& in, const Group& g);
     void traverse(int top);
-    void build_tree(const Bounds& bounds);
+    void build_tree(const Bounds& bounds);   // gpu_object_tree.cpp, with prepare() and download_tree()
     void test_chunk(int step, const Source& src, std::uint32_t count, bool on_gpu);
     void expand(int step, const Source& src, std::uint32_t count, bool on_gpu, std::uint32_t w0, std::uint32_t w);
-    void leaves(int step, std::uint32_t count, std::uint32_t leaf_pairs, bool on_gpu);
+    void leaves(int step, std::uint32_t count, bool on_gpu);
+    void dispatch_chunk(const gpu::Program& p, int step, std::uint32_t count, bool on_gpu) const;
     void read_group_counts();
     void leaf_dispatch(int step, std::uint32_t first, std::uint32_t count, bool on_gpu);
     void prune_hits();

@@ -356,18 +356,29 @@ TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
     }
 }
 
+// A built-in scene on the GPU with the wavefront pipeline's frame begun over it: what GpuRayHierarchy::trace needs
+// besides the rays, for the tests that trace batches of their own.
+struct TraceSetup {
+    explicit TraceSetup(const std::string& name) : scene(scene_at(name)), wavefront({"common/brute_force.glsl", {}, {}}) {
+        gpu_scene.upload(scene);
+        RenderSettings settings;
+        settings.effects = analyze_effects(scene);
+        wavefront.begin_frame(gpu_scene, settings);
+    }
+    Scene scene;
+    gpu::GpuScene gpu_scene;
+    gpu::Wavefront wavefront;
+};
+
 // The stats add up, on one group of rays (one hierarchy): with --objects triangles the top level tests every node
 // with every triangle, each level's pairs come from the survivors above (at most B each), the leaves' pairs get the
 // sphere test and its survivors are the local tests.
 TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
     gpu::test_context();
-    const Scene scene = scene_at("cornell");
-    gpu::GpuScene gpu_scene;
-    gpu_scene.upload(scene);
-    RenderSettings settings;
-    settings.effects = analyze_effects(scene);
-    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
-    wavefront.begin_frame(gpu_scene, settings);
+    const TraceSetup setup("cornell");
+    const Scene& scene = setup.scene;
+    const gpu::GpuScene& gpu_scene = setup.gpu_scene;
+    const gpu::Wavefront& wavefront = setup.wavefront;
     std::mt19937 g(3);
     std::vector<gpu::WavefrontRay> rays;
     const glm::vec3 centre = scene.bounds.center();
@@ -417,13 +428,10 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
 // with 64-pair buffers the chunks are cut into windows (read-backs), with the same occlusion and counts.
 TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
     gpu::test_context();
-    const Scene scene = scene_at("cornell");
-    gpu::GpuScene gpu_scene;
-    gpu_scene.upload(scene);
-    RenderSettings settings;
-    settings.effects = analyze_effects(scene);
-    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
-    wavefront.begin_frame(gpu_scene, settings);
+    const TraceSetup setup("cornell");
+    const Scene& scene = setup.scene;
+    const gpu::GpuScene& gpu_scene = setup.gpu_scene;
+    const gpu::Wavefront& wavefront = setup.wavefront;
     std::mt19937 g(8);
     std::vector<gpu::WavefrontRay> rays;
     const glm::vec3 lo = scene.bounds.lo, size = scene.bounds.hi - scene.bounds.lo;
