@@ -123,11 +123,16 @@ CpuGrid build_grid(const Scene& scene, glm::ivec3 res) {
         const glm::vec3 a = scene.positions[3 * t], b = scene.positions[3 * t + 1], c = scene.positions[3 * t + 2];
         glm::ivec3 first, last;
         triangle_cell_range(g, a, b, c, first, last);
+        // BEGIN EXERCISE 03.grid_cells: the C++ twin of grid_build.glsl's cell walk (GpuGrid.* compares the two
+        // grids cell by cell): every cell of [first, last] (x fastest, then y, then z) the triangle overlaps
+        // (triangle_overlaps_cell) lists t.
         for (int z = first.z; z <= last.z; ++z)
             for (int y = first.y; y <= last.y; ++y)
                 for (int x = first.x; x <= last.x; ++x)
                     if (triangle_overlaps_cell(g, {x, y, z}, a, b, c))
                         grid.cells[grid_cell_index(g, {x, y, z})].push_back(t);
+        // STUB: (void)a, (void)b, (void)c;
+        // END EXERCISE
     }
     return grid;
 }
@@ -164,13 +169,22 @@ int walk_grid(const GridParams& g, glm::vec3 o, glm::vec3 d, float tmax,
     float t = t_enter;
     int visited = 0;
     for (int i = 0; i < bound; ++i) {
+        int axis;
+        float t1;
+        // BEGIN EXERCISE 03.dda_cell_end: the C++ twin of grid_walk.glsl's grid_walk_cell_end (the CPU hard cases
+        // grade this one, the GLSL hard cases compare the two): per axis the t of the next boundary (grid_boundary;
+        // infinity where step is 0); the smallest names axis (ties: x, then y, then z), and the cell ends at t1 =
+        // that t, clamped to [t, t_exit].
         glm::vec3 t_max;
         for (int a = 0; a < 3; ++a)
             t_max[a] = step[a] == 0 ? std::numeric_limits<float>::infinity()
                                     : (grid_boundary(g, a, cell[a] + (step[a] > 0 ? 1 : 0)) - o[a]) / d[a];
-        const int axis = t_max.x <= t_max.y ? (t_max.x <= t_max.z ? 0 : 2) : (t_max.y <= t_max.z ? 1 : 2);
+        axis = t_max.x <= t_max.y ? (t_max.x <= t_max.z ? 0 : 2) : (t_max.y <= t_max.z ? 1 : 2);
         const float end = std::min(t_max[axis], t_exit);
-        const float t1 = end > t ? end : t;   // the cell ends no earlier than it starts
+        t1 = end > t ? end : t;   // the cell ends no earlier than it starts
+        // STUB: axis = 0;
+        // STUB: t1 = t_exit;
+        // END EXERCISE
         ++visited;
         if (!visit({cell, t, t1}) || t1 >= t_exit) return visited;
         cell[axis] += step[axis];

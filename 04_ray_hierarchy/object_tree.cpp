@@ -137,6 +137,8 @@ ObjectTree mesh_objects(const std::vector<glm::vec4>& spheres,
 bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4 s) {
     const float m = max_abs(direction);
     if (!finite(origin) || !finite(direction) || !(m > 0.0f)) return false;
+    // BEGIN EXERCISE 04.cone_sphere_test: the single-ray form (the C++ twin of rh_common.glsl's rh_ray_may_hit):
+    // rh_may_hit for a node of one ray (spread 0, no trigonometry), and the sphere out of reach beyond tmax.
     const glm::vec3 axis = glm::normalize(direction / m);
     const glm::vec3 centre(s);
     const glm::vec3 q = centre - origin;
@@ -150,6 +152,9 @@ bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4
     // Every point the ray reaches is within tmax |d| of its origin; the sphere's nearest point is |q| - radius away.
     const float length = m * glm::length(direction / m);   // |d| without overflow or underflow
     return !(q_len - s.w - margin > tmax * length * (1.0f + kRhPad));
+    // STUB: (void)tmax, (void)s;
+    // STUB: return true;
+    // END EXERCISE
 }
 
 bool rh_split_rays(const RhNode& node, glm::vec4 s) {

@@ -8,7 +8,7 @@ namespace rt {
 namespace {
 float max_abs(glm::vec3 v) { return std::max(std::abs(v.x), std::max(std::abs(v.y), std::abs(v.z))); }
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-float angle(glm::vec3 a, glm::vec3 b) { return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)); }
+[[maybe_unused]] float angle(glm::vec3 a, glm::vec3 b) { return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)); }
 }  // namespace
 
 bool valid_branching(int branching) { return branching == 4 || branching == 8 || branching == 16; }
@@ -21,6 +21,8 @@ RhNode rh_leaf(glm::vec3 origin, glm::vec3 direction) {
 
 // rh_common.glsl explains the union and why it is conservative.
 RhNode rh_union(const RhNode* kids, std::size_t count) {
+    // BEGIN EXERCISE 04.node_union: the C++ twin of rh_common.glsl's rh_union (the CPU tests grade this one, the
+    // GLSL tests compare the two): the same sphere and cone, padded the same way, bit for bit.
     const float inf = INFINITY;
     glm::vec3 lo(inf), hi(-inf), axis_sum(0.0f), first_axis(1.0f, 0.0f, 0.0f);
     bool any = false, all_directions = false;
@@ -47,6 +49,8 @@ RhNode rh_union(const RhNode* kids, std::size_t count) {
     spread = spread * (1.0f + kRhPad) + kRhPad;
     if (all_directions || !(spread < kRhAllDirections)) spread = 3.14159274f;
     return RhNode{glm::vec4(c, radius), glm::vec4(axis, spread)};
+    // STUB: return count > 0 ? kids[0] : RhNode{};
+    // END EXERCISE
 }
 
 glm::vec4 rh_triangle_sphere(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
@@ -58,7 +62,9 @@ glm::vec4 rh_triangle_sphere(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
 
 bool rh_may_hit(const RhNode& node, glm::vec4 s) {
     if (node.empty()) return false;
-    if (node.cone.w >= kRhAllDirections) return true;
+    if (node.cone.w >= kRhAllDirections) return true;   // every direction: the rays reach everything
+    // BEGIN EXERCISE 04.cone_sphere_test: the C++ twin of rh_common.glsl's rh_may_hit: the same test, the same
+    // margin, the same answer on every input.
     const glm::vec3 axis(node.cone), centre(node.sphere);
     const glm::vec3 q = glm::vec3(s) - centre;
     const float q_len = glm::length(q);
@@ -72,6 +78,9 @@ bool rh_may_hit(const RhNode& node, glm::vec4 s) {
     const float dist = cos_part <= 0.0f ? q_len : sin_part;
     const bool far = sin_part > 0.0f && dist > reach + margin;
     return !far;
+    // STUB: (void)s;
+    // STUB: return false;
+    // END EXERCISE
 }
 
 std::vector<std::vector<RhNode>> rh_build(const std::vector<RhRay>& rays, int branching, int max_levels) {

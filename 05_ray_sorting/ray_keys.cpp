@@ -133,6 +133,9 @@ std::uint32_t origin_code(glm::vec3 origin, const RayKeyLayout& layout) {
 }
 
 std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) {
+    // BEGIN EXERCISE 05.ray_key: the C++ twin of ray_sort.glsl's rs_ray_key (RayKeys.* grade this one, RaySorter.*
+    // compare the two bit for bit): origin_code, the octahedral direction cells, the two codes in the layout's
+    // order, the top hash bits, the group above them.
     const std::uint32_t oc = origin_code(ray.origin, layout);
     const glm::vec3 d = ray.direction;
     const float s = (std::abs(d.x) + std::abs(d.y)) + std::abs(d.z);
@@ -148,6 +151,8 @@ std::uint32_t ray_key(const gpu::WavefrontRay& ray, const RayKeyLayout& layout) 
                                                       : shift_left(oc, layout.direction_total) | direction_code;
     const std::uint32_t kept = layout.hash_drop >= 32 ? 0u : hash >> layout.hash_drop;
     return shift_left(ray_group(ray, layout), layout.hash_bits) | kept;
+    // STUB: return shift_left(ray_group(ray, layout), layout.hash_bits);
+    // END EXERCISE
 }
 
 RayChunks compress(const std::vector<std::uint32_t>& keys) {
@@ -179,8 +184,13 @@ RayChunks sort_chunks(const RayChunks& chunks) {
 
 std::vector<std::uint32_t> decompress(const RayChunks& sorted, std::uint32_t first) {
     std::vector<std::uint32_t> order;
+    // BEGIN EXERCISE 05.decompression: the C++ twin of skeleton.comp: chunk by chunk in sorted order, the queue
+    // indices of its rays (first + the chunk's base, counting up over its size).
     for (std::size_t c = 0; c < sorted.keys.size(); ++c)
         for (std::uint32_t k = 0; k < sorted.sizes[c]; ++k) order.push_back(first + sorted.bases[c] + k);
+    // STUB: for (std::size_t c = 0; c < sorted.keys.size(); ++c)
+    // STUB:     for (std::uint32_t k = 0; k < sorted.sizes[c]; ++k) order.push_back(first + std::uint32_t(order.size()));
+    // END EXERCISE
     return order;
 }
 

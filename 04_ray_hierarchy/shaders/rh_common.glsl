@@ -162,6 +162,8 @@ bool rh_is_triangle(uint y) { return (y & RH_TRIANGLE_FLAG) != 0u; }
 bool rh_ray_may_hit(vec3 origin, vec3 direction, float tmax, vec4 s) {
     const float m = rh_max_abs(direction);
     if (!rh_finite(origin) || !rh_finite(direction) || !(m > 0.0)) return false;
+    // BEGIN EXERCISE 04.cone_sphere_test: the single-ray form: rh_may_hit for a node of one ray (spread 0, so no
+    // trigonometry), and the sphere out of reach when its nearest point lies beyond tmax.
     const vec3 axis = normalize(direction / m);
     const vec3 q = s.xyz - origin;
     const float q_len = length(q);
@@ -172,6 +174,8 @@ bool rh_ray_may_hit(vec3 origin, vec3 direction, float tmax, vec4 s) {
     if (dist > s.w + margin) return false;   // A <= 0: the origin is the ray's nearest point to the centre
     const float len = m * length(direction / m);   // |d| without overflow or underflow
     return !(q_len - s.w - margin > tmax * len * (1.0 + RH_PAD));
+    // STUB: return true;
+    // END EXERCISE
 }
 
 // --objects tree: split the rays of a surviving pair when their beam is wider than the object node where it meets

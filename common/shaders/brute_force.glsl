@@ -23,6 +23,9 @@ bool intersect_scene_triangle(Ray ray, WatertightRay w, uint i, out float t, out
 // t = +inf). `hit` may hold the closest of earlier triangles (a sliced traversal, brute_force_slice.comp): the
 // result is the same as one loop over all of them.
 void closest_hit_among(Ray ray, WatertightRay w, uint first, uint end, inout Hit hit) {
+    // BEGIN EXERCISE 01.closest_hit: the GLSL twin of BruteForceTracer::closest (stages 02-05 trace with it): test
+    // triangles [first, end) with intersect_scene_triangle, keep a hit only when strictly closer than hit.t and
+    // cutout_opaque(i, u, v), shrink ray.tmax, and count the tests made with wf_count_tests.
     if (hit.triangle >= 0) ray.tmax = hit.t;
     for (uint i = first; i < end; ++i) {
         float t, u, v;
@@ -35,11 +38,15 @@ void closest_hit_among(Ray ray, WatertightRay w, uint first, uint end, inout Hit
         }
     }
     wf_count_tests(end - first);
+    // STUB: wf_count_tests(0u);
+    // END EXERCISE
 }
 
 // Whether any triangle of [first, end) is hit: shadow rays only need to know whether anything blocks the light, so
 // stop at the first hit (and count only the tests made).
 bool any_hit_among(Ray ray, WatertightRay w, uint first, uint end) {
+    // BEGIN EXERCISE 01.any_hit: the GLSL twin of BruteForceTracer::occluded: stop at the first triangle of
+    // [first, end) hit (where cutout_opaque) and count only the tests made (wf_count_tests).
     for (uint i = first; i < end; ++i) {
         float t, u, v;
         if (intersect_scene_triangle(ray, w, i, t, u, v) && cutout_opaque(i, u, v)) {
@@ -49,6 +56,8 @@ bool any_hit_among(Ray ray, WatertightRay w, uint first, uint end) {
     }
     wf_count_tests(end - first);
     return false;
+    // STUB: return false;
+    // END EXERCISE
 }
 
 // The per-ray traversal: one loop over every triangle. (Mesa's llvmpipe cuts an invocation's loops short after

@@ -62,19 +62,27 @@ vec3 whitted_spawn_origin(SurfacePoint sp, vec3 direction, int offset_method, fl
 // Weights of the reflected and refracted rays for a ray arriving along d (Whitted::coefficients): the Fresnel term
 // uses eta = n_incident / n_transmitted, 1/ior entering a front face, ior leaving through a back face.
 ReflectRefract whitted_coefficients(WhittedSurface w, vec3 d, int fresnel_mode, out float eta) {
+    // BEGIN EXERCISE 01.whitted_recursion: cos_i from the shading normal (clamped to [0, 1]), eta (1/ior entering a
+    // front face, ior leaving), the Fresnel term, and reflect_refract_coefficients, as Whitted::radiance does.
     const float cos_i = rt_clamp(-rt_dot(d, w.point.shading_normal), 0.0, 1.0);
     precise float inv_ior = 1.0 / w.coefficients.ior;
     eta = w.point.front_face ? inv_ior : w.coefficients.ior;
     const float f = fresnel(fresnel_mode, cos_i, eta);
     return reflect_refract_coefficients(w.coefficients, w.point.front_face, cos_i, f);
+    // STUB: eta = 1.0;
+    // STUB: return ReflectRefract(vec3(0.0), vec3(0.0));
+    // END EXERCISE
 }
 
 // Mirror direction about the shading normal; about the geometric normal when the shading normal would send the
 // ray under the surface (strongly interpolated normals). Unit length.
 vec3 whitted_reflection_dir(SurfacePoint sp, vec3 d) {
+    // BEGIN EXERCISE 01.whitted_recursion: the mirror direction, with Whitted::radiance's fallback.
     vec3 dir = reflect_dir(d, sp.shading_normal);
     if (rt_dot(dir, sp.geometric_normal) <= 0.0) dir = reflect_dir(d, sp.geometric_normal);
     return rt_normalize(dir);
+    // STUB: return d;
+    // END EXERCISE
 }
 
 // Snell's law about the shading normal; false under total internal reflection. Unit length.

@@ -76,6 +76,11 @@ void shade(uint i, WavefrontHit entry) {
     wf_flags[n_hits + i] = 0u;
     const uint depth = wf_depth(incoming);
     if (int(depth) >= wf_max_depth) return;
+    // BEGIN EXERCISE 01.whitted_recursion: the GLSL twin of Whitted::radiance's secondary rays, as a wavefront pass:
+    // with k = whitted_coefficients(...), write a reflection ray (whitted_reflection_dir) to wf_ray_slots[i] and a
+    // refraction ray (whitted_refraction_dir; none at total internal reflection) to wf_ray_slots[n_hits + i], each
+    // only when its weight stays above wf_cutoff, starting at whitted_spawn_origin, with depth + 1 and path
+    // 2 * path (+ 1 for refraction); set its wf_flags slot to 1 and count it (reflection_rays, refraction_rays).
     float eta;
     const ReflectRefract k = whitted_coefficients(w, d, wf_fresnel, eta);
 #ifdef ENABLE_REFLECTIONS
@@ -100,6 +105,8 @@ void shade(uint i, WavefrontHit entry) {
         ++refraction_rays;
     }
 #endif
+    // STUB: return;
+    // END EXERCISE
 #endif
 }
 
