@@ -185,8 +185,12 @@ TEST(RayKeys, AbsurdBoxesGiveAUsableLayout) {
                     EXPECT_EQ(L.origin_scale, 0.0f);
                 }
                 for (const gpu::WavefrontRay& r : rays) {
-                    if (L.origin_total < 32) EXPECT_LT(origin_code(r.origin, L), 1u << L.origin_total);
-                    if (L.sort_bits < 32) EXPECT_LT(ray_key(r, L), 1u << L.sort_bits);
+                    if (L.origin_total < 32) {
+                        EXPECT_LT(origin_code(r.origin, L), 1u << L.origin_total);
+                    }
+                    if (L.sort_bits < 32) {
+                        EXPECT_LT(ray_key(r, L), 1u << L.sort_bits);
+                    }
                 }
             }
         }

@@ -13,7 +13,7 @@
 //                     coefficients, light incidence and shade_light stay finite at their edges (grazing, total
 //                     internal reflection, eta = 1, lights at the point, equal spot cones, ...).
 //
-// Run build/tests/unit_tests --gtest_filter='GlslHardCases.*' to see the rates they print.
+// Run build/tests/unit_tests_common_gpu --gtest_filter='GlslHardCases.*' to see the rates they print.
 #include <gtest/gtest.h>
 
 #include <cmath>

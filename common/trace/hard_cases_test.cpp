@@ -7,7 +7,7 @@
 //   Inputs            degenerate triangles, NaN/Inf vertices, NaN/zero ray directions: no crash, no hang, no NaN.
 //   FarScene          builtin:far (the Whitted scene moved by 1e4) renders like builtin:whitted.
 //
-// The tests print the rates they measure (run build/tests/unit_tests --gtest_filter='Watertight*:SelfIntersection*'
+// The tests print the rates they measure (run build/tests/unit_tests_common_trace --gtest_filter='Watertight*:SelfIntersection*'
 // to see them). The GLSL twins of these routines get the same cases in their own harness.
 //
 // Every render a test makes is checked for NaN/Inf pixels here; the golden-image tests do the same for every stage
