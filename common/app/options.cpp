@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "../scene/builtin_scenes.h"
 #include "../scene/effects.h"
 #include "environment_file.h"
 #include "image.h"
@@ -63,7 +64,7 @@ glm::vec3 parse_background(const std::string& text) {
 }
 
 void add_shared_options(CLI::App& app, Options& o) {
-    app.add_option("--scene", o.scene, "builtin:NAME (whitted, cornell, diffuse, dynamic, spheres:N, far, mirror_box, office) or a .gltf/.glb file")
+    app.add_option("--scene", o.scene, "builtin:NAME (" + builtin_scene_list() + ") or a .gltf/.glb file")
         ->capture_default_str();
     app.add_option("--width", o.render.width, "Image width in pixels")->capture_default_str()->check(number_in(1, 16384));
     app.add_option("--height", o.render.height, "Image height in pixels")->capture_default_str()->check(number_in(1, 16384));

@@ -588,6 +588,12 @@ std::vector<std::string> builtin_scene_names() {
             "absorption", "normal_map", "cutouts"};
 }
 
+std::string builtin_scene_list() {
+    std::string known;
+    for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
+    return known + "; spheres takes a count, spheres:N";
+}
+
 SceneAsset make_builtin_scene(const std::string& name) {
     if (name == "whitted") return whitted();
     if (name == "cornell") return cornell();
@@ -602,9 +608,7 @@ SceneAsset make_builtin_scene(const std::string& name) {
     if (name == "cutouts") return cutouts();
     if (name == "spheres") return spheres(64);
     if (name.rfind("spheres:", 0) == 0) return spheres(parse_sphere_count(name.substr(8)));
-    std::string known;
-    for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
-    throw SceneError("unknown built-in scene '" + name + "' (known: " + known + "; spheres takes a count, spheres:N)");
+    throw SceneError("unknown built-in scene '" + name + "' (known: " + builtin_scene_list() + ")");
 }
 
 // A UV sphere: (segments + 1) columns x (rings + 1) rows of vertices, theta from the north pole (row 0) to the south

@@ -22,6 +22,10 @@ namespace rt {
 //   cutouts  Alpha cut-outs: a fence with holes (MASK) casting a shadow, a mirror reflecting it, a BLEND pane.
 std::vector<std::string> builtin_scene_names();
 
+// The registry as one line, for --help and the "unknown built-in scene" error (the same text in both):
+// "whitted, cornell, ..., cutouts; spheres takes a count, spheres:N".
+std::string builtin_scene_list();
+
 // Throws SceneError for an unknown name or a bad count.
 SceneAsset make_builtin_scene(const std::string& name);
 
