@@ -7,11 +7,13 @@
 #include <cstdio>
 
 #include "common/trace/brute_force_tracer.h"
+#include "common/trace/hard_cases.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/gpu_test_context.h"
 #include "common/gpu/wavefront.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/trace/whitted.h"
+#include "tests/hit_compare.h"
 
 namespace rt {
 namespace {
@@ -58,6 +60,53 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
     EXPECT_LE(double(failing), 0.01 * width * height);
     for (int k = 0; k < 4; ++k) EXPECT_EQ(gpu_counters.rays[k], cpu_counters.rays[k]) << "ray kind " << k;
     EXPECT_EQ(gpu_counters.intersection_tests, cpu_counters.intersection_tests);
+}
+
+// Traced primary rays, brute force in GLSL, against stage 01's brute force ray by ray: the same triangle for every
+// closest hit (ties at equal t to the lowest id, as the CPU tracer's), the same answer for every shadow ray through
+// the cut-outs' holes (a hole does not block), the same rays spawned.
+TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
+    gpu::test_context();
+    const int width = 64, height = 48;
+    FlattenOptions options;
+    options.aspect = float(width) / float(height);
+    for (const bool coincident : {false, true}) {
+        Scene scene = flatten(make_builtin_scene("cutouts"), options);
+        if (coincident) scene = hard_cases::with_coincident_copies(scene);
+        RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.effects = analyze_effects(scene);
+        settings.record_hits = true;
+        ASSERT_TRUE(settings.effects.cutouts && settings.effects.shadows);
+
+        gpu::GpuScene gpu_scene;
+        gpu_scene.upload(scene);
+        gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
+        wavefront.begin_frame(gpu_scene, settings);
+        wavefront.trace_camera_sample(glm::vec2(0.5f));
+        FrameResult gpu;
+        wavefront.finish_frame(gpu);
+
+        const BruteForceTracer<float> tracer(scene, settings.intersect, true);
+        WhittedSettings ws;
+        ws.effects = settings.effects;
+        const Whitted<float, BruteForceTracer<float>> whitted(scene, tracer, ws);
+        std::vector<HitRecord> cpu;
+        RayCounters counters;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const HitLog log{&cpu, 0, std::uint32_t(y * width + x)};
+                const Ray<float> ray = camera_ray<float>(scene.camera, width, height, float(x) + 0.5f, float(y) + 0.5f);
+                whitted.radiance(ray, 0, glm::vec3(1.0f), counters, &log);
+            }
+        HitCompareOptions bounds;
+        bounds.ray_ulps = 64;   // float on both sides, not the same arithmetic (tests/hits.cmake)
+        bounds.t_ulps = 64;
+        const HitComparison c = compare_hits(gpu.hits, cpu, bounds);
+        EXPECT_TRUE(c.passed(bounds)) << (coincident ? "coincident copies: " : "cutouts: ") << c.report(bounds);
+        EXPECT_GT(c.count_a[int(HitRecordKind::Shadow)], 100u);
+    }
 }
 
 }  // namespace

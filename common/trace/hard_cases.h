@@ -6,6 +6,7 @@
 //   placement           sphere_at() / thin_slab_at(): a scene at coordinates OFFSET and of size SCALE, and where
 //                       float can represent it (sphere_representable, robust_offset_bound)
 //   broken inputs       broken_triangles(), broken_rays(): zero-area triangles, NaN/Inf vertices, NaN/zero rays
+//   ties                with_coincident_copies(): every triangle twice, so every hit is a tie at equal t
 // Header-only, for tests.
 #pragma once
 
@@ -316,6 +317,23 @@ template <class T> AimedRay<T> primary_ray_at_random_triangle(const Scene& s, do
     const glm::dvec3 b = interior_barycentrics(rng);
     const Vec3<T> target = T(b.x) * corner<T>(s, t, 0) + T(b.y) * corner<T>(s, t, 1) + T(b.z) * corner<T>(s, t, 2);
     return {ray_aimed_at(target, direction_outside<T>({winding_normal<T>(s, t)}, T(0.2), rng), T(3 * scale)), t, b};
+}
+
+// Every triangle of the scene twice: the copy (same vertices; every other one in reverse order, so its winding is
+// the opposite) gets a higher id, so every hit is a tie at equal t, which must go to the lowest id in every stage.
+inline Scene with_coincident_copies(Scene s) {
+    const std::size_t n = s.triangle_count();
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t order[3] = {0, i % 2 ? 2u : 1u, i % 2 ? 1u : 2u};
+        for (std::size_t k : order) {
+            s.positions.push_back(s.positions[3 * i + k]);
+            s.normals.push_back(s.normals[3 * i + k]);
+            s.uvs.push_back(s.uvs[3 * i + k]);
+            if (!s.tangents.empty()) s.tangents.push_back(s.tangents[3 * i + k]);
+        }
+        s.material_ids.push_back(s.material_ids[i]);
+    }
+    return s;
 }
 
 }  // namespace rt::hard_cases
