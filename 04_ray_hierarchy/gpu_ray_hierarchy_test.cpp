@@ -147,6 +147,54 @@ void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec
     EXPECT_GT(rejected, 1000u);
 }
 
+// Empty children (rays of zero or non-finite direction, the padding of a last node) are left out of a union: a node
+// over some children with empty ones between them is, bit for bit, the node over those children alone.
+TEST(GlslRayHierarchy, EmptyChildrenAreLeftOutOfTheUnion) {
+    gpu::test_context();
+    static gpu::GlslTestHarness join("rh_union_empties", R"(#include "04_ray_hierarchy/rh_common.glsl"
+void test_main() {
+    RhNode kids[16];
+    for (uint k = 0u; k < 16u; ++k) kids[k] = RhNode(in_vec4(1u + 8u * k), in_vec4(5u + 8u * k));
+    const RhNode n = rh_union(kids, in_u(0u));
+    out_vec4(0u, n.sphere);
+    out_vec4(4u, n.cone);
+})");
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    Words w;
+    const int cases = 64;
+    for (int c = 0; c < cases; ++c) {
+        const std::size_t n = 1 + std::size_t(c % 8);
+        std::vector<RhNode> kids;
+        for (std::size_t k = 0; k < n; ++k)
+            kids.push_back(rh_leaf({u(rng) * 5, u(rng) * 5, u(rng) * 5}, {u(rng), u(rng), 0.5f + u(rng)}));
+        std::vector<RhNode> with_empties;
+        for (const RhNode& k : kids) {
+            for (int e = int(rng() % 2); e > 0; --e) with_empties.push_back(RhNode{});
+            with_empties.push_back(k);
+        }
+        if (c % 3 == 0) with_empties.insert(with_empties.begin(), RhNode{});
+        for (const std::vector<RhNode>* set : {&kids, &with_empties}) {
+            w << std::uint32_t(set->size());
+            for (std::size_t k = 0; k < 16; ++k) {
+                const RhNode node = k < set->size() ? (*set)[k] : RhNode{};
+                w << node.sphere << node.cone;
+            }
+        }
+    }
+    const auto out = join.run(w.words, 2 * cases, 129, 8);
+    for (int c = 0; c < cases; ++c) {
+        const RhNode alone = node_at(out, 16 * std::size_t(c)), among = node_at(out, 16 * std::size_t(c) + 8);
+        EXPECT_EQ(std::memcmp(&alone, &among, sizeof(RhNode)), 0) << "case " << c << ": an empty child changed the node";
+        EXPECT_FALSE(alone.empty());
+    }
+    // No child with rays at all: the empty node.
+    Words none;
+    none << std::uint32_t(3);
+    for (std::size_t k = 0; k < 16; ++k) none << RhNode{}.sphere << RhNode{}.cone;
+    EXPECT_TRUE(node_at(join.run(none.words, 1, 129, 8), 0).empty());
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // The batch traversal on crafted rays against brute force on the CPU (bit-exact twins on llvmpipe).
 
