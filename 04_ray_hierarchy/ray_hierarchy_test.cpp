@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "common/trace/intersect.h"
 #include "ray_hierarchy.h"
@@ -64,6 +65,26 @@ TEST(RayHierarchy, TheNodeTestNeverRejectsATriangleARayBelowHits) {
         }
     EXPECT_GT(rejected, 1000u);   // the test is not vacuous: many pairs are culled
     EXPECT_GT(checked, 10000u);
+}
+
+// A ray that grazes a sphere (passes at exactly its radius from the centre) may hit what the sphere holds: the node
+// test must keep the pair whatever the rounding of the distance, near the origin and far from it (the margin).
+TEST(RayHierarchy, ARayGrazingASphereIsKeptNearAndFarFromTheOrigin) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    int kept = 0, cases = 0;
+    for (float offset : {0.0f, 1e3f, 1e5f})
+        for (int i = 0; i < 2000; ++i) {
+            const glm::vec3 centre = glm::vec3(u(rng), u(rng), u(rng)) * 10.0f + offset;
+            const float radius = 0.01f + 2.0f * std::abs(u(rng));
+            const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, 0.0f, 1e-3f));
+            glm::vec3 n = glm::cross(d, glm::vec3(0.3f, 0.8f, 0.5f));   // a unit normal of d
+            n = glm::normalize(n);
+            const glm::vec3 origin = centre + radius * n - (5.0f + 10.0f * std::abs(u(rng))) * d;
+            ++cases;
+            if (rh_may_hit(rh_leaf(origin, d), glm::vec4(centre, radius))) ++kept;
+        }
+    EXPECT_EQ(kept, cases) << cases - kept << " grazing rays rejected";
 }
 
 TEST(RayHierarchy, LevelsHoldCeilOfChildrenOverBranchingAndStopAtTheLimit) {
