@@ -3,7 +3,7 @@
 #    exercise has a line, every line a marked exercise (a renamed test cannot drop out of grading);
 #  - exercise.each_stage_builds_and_fails_its_grading: each stage's student copy holds no answer, builds, and is
 #    graded "not attempted"; a wrong answer fails with its assertion's text and the report loads in a browser;
-#  - mutants.every_wrong_answer_fails (only with -DRT_MUTANTS=ON, label "mutants"; about an hour on 2 cores): every
+#  - mutants.every_wrong_answer_fails (only with -DRT_MUTANTS=ON, label "mutants"; 88 min on 2 cores from scratch): every
 #    plausible wrong answer of tests/mutants fails scripts/grade, and the solution passes.
 find_program(RT_PYTHON3 python3 PATHS /usr/bin NO_DEFAULT_PATH)
 if(NOT RT_PYTHON3)
@@ -21,7 +21,7 @@ add_test(NAME exercise.each_stage_builds_and_fails_its_grading
 # COST: scheduled first on a fresh build (it takes minutes: one build of the copy), so the other tests run beside it.
 set_tests_properties(exercise.each_stage_builds_and_fails_its_grading PROPERTIES LABELS "exercise" TIMEOUT 2400 COST 10000)
 
-option(RT_MUTANTS "register mutants.every_wrong_answer_fails (about an hour on 2 cores)" OFF)
+option(RT_MUTANTS "register mutants.every_wrong_answer_fails (about 90 minutes on 2 cores)" OFF)
 if(RT_MUTANTS)
   add_test(NAME mutants.every_wrong_answer_fails
            COMMAND ${PROJECT_SOURCE_DIR}/scripts/mutants --work ${CMAKE_BINARY_DIR}/test-output/mutants)
