@@ -45,14 +45,8 @@ RhNode node_at(const std::vector<std::uint32_t>& w, std::size_t i) {
     return n;
 }
 
-// The hierarchy built by the GLSL functions (leaves, then unions level by level), one harness run per level.
-std::vector<std::vector<RhNode>> glsl_build(const std::vector<RhRay>& rays, int b) {
-    static gpu::GlslTestHarness leaf("rh_leaf", R"(#include "04_ray_hierarchy/rh_common.glsl"
-void test_main() {
-    const RhNode n = rh_leaf(in_vec3(0u), in_vec3(3u));
-    out_vec4(0u, n.sphere);
-    out_vec4(4u, n.cone);
-})");
+// rh_union in GLSL: per record, the child count and 16 children (sphere, cone); out the node (sphere, cone).
+gpu::GlslTestHarness& glsl_union() {
     static gpu::GlslTestHarness join("rh_union", R"(#include "04_ray_hierarchy/rh_common.glsl"
 void test_main() {
     RhNode kids[16];
@@ -61,6 +55,18 @@ void test_main() {
     out_vec4(0u, n.sphere);
     out_vec4(4u, n.cone);
 })");
+    return join;
+}
+
+// The hierarchy built by the GLSL functions (leaves, then unions level by level), one harness run per level.
+std::vector<std::vector<RhNode>> glsl_build(const std::vector<RhRay>& rays, int b) {
+    static gpu::GlslTestHarness leaf("rh_leaf", R"(#include "04_ray_hierarchy/rh_common.glsl"
+void test_main() {
+    const RhNode n = rh_leaf(in_vec3(0u), in_vec3(3u));
+    out_vec4(0u, n.sphere);
+    out_vec4(4u, n.cone);
+})");
+    gpu::GlslTestHarness& join = glsl_union();
     Words in;
     for (const RhRay& r : rays) in << r.origin << r.direction;
     std::vector<std::vector<RhNode>> levels(1);
@@ -151,14 +157,7 @@ void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec
 // over some children with empty ones between them is, bit for bit, the node over those children alone.
 TEST(GlslRayHierarchy, EmptyChildrenAreLeftOutOfTheUnion) {
     gpu::test_context();
-    static gpu::GlslTestHarness join("rh_union_empties", R"(#include "04_ray_hierarchy/rh_common.glsl"
-void test_main() {
-    RhNode kids[16];
-    for (uint k = 0u; k < 16u; ++k) kids[k] = RhNode(in_vec4(1u + 8u * k), in_vec4(5u + 8u * k));
-    const RhNode n = rh_union(kids, in_u(0u));
-    out_vec4(0u, n.sphere);
-    out_vec4(4u, n.cone);
-})");
+    gpu::GlslTestHarness& join = glsl_union();
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     Words w;
