@@ -98,6 +98,9 @@ std::vector<std::uint8_t> GpuContext::read_window_rgba8(int& width, int& height)
 }
 
 WindowInput GpuContext::take_input() { return impl_ ? impl_->take_input() : WindowInput{}; }
+void GpuContext::wait_events(double seconds) {
+    if (impl_) impl_->wait_events(seconds);
+}
 void GpuContext::set_title(const std::string& title) {
     if (impl_) impl_->set_title(title);
 }
@@ -148,6 +151,20 @@ void add_gpu_options(CLI::App& app, GpuOptions& options) {
     auto* window = app.add_flag("--window", options.window, "Show the frames in an interactive GLFW viewer window (controls: README.md; not in portable builds)");
     app.add_option("--screenshot", options.screenshot, "Window mode: save what the window shows to FILE")
         ->needs(window);
+    app.add_option_function<std::string>(
+           "--moving-scale",
+           [&options](const std::string& text) { options.moving_scale = text == "auto" ? 0 : std::stoi(text); },
+           "Window mode: while the camera moves, render at 1/N of the resolution per axis (auto: N from the frame "
+           "times, for about 66 ms per frame; 1: always full resolution)")
+        ->check([](const std::string& text) -> std::string {
+            if (text == "auto") return {};
+            if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 2)
+                return "'" + text + "' is not auto or a whole number from 1 to 16";
+            const int n = std::stoi(text);
+            return n >= 1 && n <= 16 ? std::string() : text + " is out of range: must be auto or 1 to 16";
+        })
+        ->needs(window)
+        ->default_str("auto");
     app.add_flag("--gl-debug,!--no-gl-debug", options.debug, "GL_KHR_debug output (on by default in debug builds)");
 }
 

@@ -23,6 +23,7 @@ struct GpuOptions {
     bool window = false;            // GLFW window instead of a headless context (not in RT_PORTABLE builds)
     std::string screenshot;         // window mode: where the stage saves what the window shows (empty = none)
     int window_width = 1024, window_height = 768;
+    int moving_scale = 0;           // window mode: frames while the camera moves render at 1/N per axis (0: auto)
 #ifdef RT_GL_DEBUG
     bool debug = true;              // GL_KHR_debug output and a debug context
 #else
@@ -30,7 +31,8 @@ struct GpuOptions {
 #endif
 };
 
-// Adds --backend auto|egl|osmesa, --window, --screenshot FILE, --gl-debug to a stage's command line.
+// Adds --backend auto|egl|osmesa, --window, --screenshot FILE, --moving-scale auto|N, --gl-debug to a stage's
+// command line.
 void add_gpu_options(CLI::App& app, GpuOptions& options);
 
 // Window mode: what the user did with mouse and keyboard since the last take_input() (the viewer's input, gpu/viewer.h;
@@ -42,6 +44,11 @@ struct WindowInput {
     std::string keys;             // keys pressed, in order: 'a'-'z', '0'-'9', '+', '-', ' ' (space), '\x1b' (Esc)
     glm::vec3 held{0.0f};         // movement keys held now: x = D - A, y = E - Q, z = W - S
     int window_height = 0;        // in the units of the drags
+
+    bool moves_camera() const {
+        return orbit_drag != glm::vec2(0.0f) || pan_drag != glm::vec2(0.0f) || scroll != 0.0f || held != glm::vec3(0.0f);
+    }
+    bool empty() const { return !moves_camera() && keys.empty(); }
 };
 
 // A current GL 4.5 core context. Move-only; destroying it releases the context (and the window).
@@ -77,6 +84,8 @@ public:
     std::vector<std::uint8_t> read_window_rgba8(int& width, int& height) const;
     // Window mode: the input since the last call (present() polls the events), and the window's title.
     WindowInput take_input();
+    // Window mode: sleeps until an input event arrives or `seconds` pass (the viewer idles while nothing changes).
+    void wait_events(double seconds);
     void set_title(const std::string& title);
 
     struct Impl;

@@ -30,6 +30,7 @@ struct GpuContext::Impl {
     virtual bool present(unsigned fbo, int width, int height);
     virtual std::vector<std::uint8_t> read_window_rgba8(int& width, int& height) const;
     virtual WindowInput take_input() { return {}; }
+    virtual void wait_events(double /*seconds*/) {}
     virtual void set_title(const std::string& /*title*/) {}
 
 protected:

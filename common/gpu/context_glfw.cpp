@@ -91,6 +91,8 @@ struct GlfwContext final : GpuContext::Impl {
         return out;
     }
 
+    void wait_events(double seconds) override { glfwWaitEventsTimeout(seconds); }
+
     void set_title(const std::string& title) override { glfwSetWindowTitle(window, title.c_str()); }
 
     ~GlfwContext() override {

@@ -45,8 +45,9 @@ void GpuStage::initialize() {
     }
     context_ = create_context(gpu_options);
     if (context_.is_window()) {
-        viewer_ = std::make_unique<Viewer>(app_ ? app_->get_name() : "gpu stage");
-        if (app_ && !app_->get_option("--quiet")->as<bool>()) {
+        const bool quiet = app_ && app_->get_option("--quiet")->as<bool>();
+        viewer_ = std::make_unique<Viewer>(app_ ? app_->get_name() : "gpu stage", gpu_options.moving_scale);
+        if (!quiet) {
             std::printf("%s", Viewer::key_help().c_str());
             std::fflush(stdout);
         }
@@ -91,6 +92,11 @@ void GpuStage::add_phase_times(const std::vector<std::pair<std::string, double>>
 }
 
 FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings& requested_settings) {
+    // A frame only the window shows waits until something changes it (viewer.h); none once the window closed.
+    if (viewer_ && !requested_settings.need_image && !viewer_->wait_for_change(context_, requested_scene)) {
+        closed_ = true;
+        return {};
+    }
     const auto start = std::chrono::steady_clock::now();
     // In a window the viewer may render another camera, a paused frame, other effects or depth (viewer.h).
     const Scene& scene = viewer_ ? viewer_->scene_for_frame(requested_scene) : requested_scene;

@@ -1,6 +1,7 @@
 #include "viewer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -12,7 +13,27 @@ namespace rt::gpu {
 namespace {
 constexpr int kMaxViewerDepth = 64;           // as --max-depth
 constexpr float kMoveSceneSizesPerSecond = 0.25f;
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 }  // namespace
+
+Viewer::~Viewer() {
+    if ((!moving_.ms.empty() || !full_.ms.empty())) say("viewer: " + summary());
+}
+
+std::string Viewer::summary() const {
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "%zu frames while moving (median %.1f ms at %dx%d), %zu at full resolution (median %.1f ms at %dx%d)",
+                  moving_.ms.size(), median(moving_.ms), moving_.width, moving_.height, full_.ms.size(),
+                  median(full_.ms), full_.width, full_.height);
+    return line;
+}
 
 std::string Viewer::key_help() {
     return "viewer controls:\n"
@@ -54,8 +75,34 @@ RenderSettings Viewer::settings_for_frame(const RenderSettings& requested) {
     settings.effects.refractions &= !off_.refractions;
     if (max_depth_ >= 0) settings.max_depth = max_depth_;
     if (heatmap_) settings.record_tests_per_pixel = true;
+    writes_frame_ = requested.need_image;   // the driver writes this frame: full resolution, as headless
+    const double since_motion = std::chrono::duration<double>(Clock::now() - last_motion_).count();
+    reduced_ = !writes_frame_ && !save_next_ && since_motion < kSettleSeconds && reduction_ > 1;
+    if (reduced_) {
+        settings.width = std::max(1, (requested.width + reduction_ - 1) / reduction_);
+        settings.height = std::max(1, (requested.height + reduction_ - 1) / reduction_);
+        settings.spp = 1;
+    }
     if (settings.exposure.automatic) settings.need_image = true;   // its EV comes from the image, on the CPU
+    dirty_ = false;
     return settings;
+}
+
+void Viewer::choose_reduction(double frame_ms) {
+    // Time grows about with the pixel count, so 1/r per axis costs about 1/r^2 of a full frame. The first guess
+    // comes from the full frame's time; later moving frames correct it by a factor of 2 either way.
+    if (fixed_reduction_ > 0) return;
+    if (!reduced_) {
+        full_ms_ = frame_ms;
+        if (reduction_ == 0) {
+            reduction_ = 1;
+            while (reduction_ < kMaxReduction && full_ms_ / double(reduction_ * reduction_) > kMovingTargetMs)
+                reduction_ *= 2;
+        }
+        return;
+    }
+    if (frame_ms > kMovingTargetMs && reduction_ < kMaxReduction) reduction_ *= 2;
+    else if (reduction_ > 1 && frame_ms * 4.0 < kMovingTargetMs) reduction_ /= 2;   // 4x the pixels still fit
 }
 
 void Viewer::toggle(bool Effects::*effect, const char* name) {
@@ -80,8 +127,12 @@ void Viewer::handle(const WindowInput& input) {
     const auto now = std::chrono::steady_clock::now();
     const float dt = std::min(std::chrono::duration<float>(now - last_input_).count(), 0.1f);
     last_input_ = now;
-    const bool moves = input.orbit_drag != glm::vec2(0.0f) || input.pan_drag != glm::vec2(0.0f) ||
-                       input.scroll != 0.0f || input.held != glm::vec3(0.0f);
+    const bool moves = input.moves_camera();
+    if (moves) {
+        last_motion_ = now;
+        dirty_ = true;
+    }
+    if (!input.keys.empty()) dirty_ = true;   // every key changes the frame, or asks for one (P)
     if (moves && !camera_moved_) {
         rig_ = make_rig(scene_camera_, scene_bounds_);
         camera_moved_ = true;
@@ -128,17 +179,52 @@ bool Viewer::show(GpuContext& context, WindowPresenter& presenter, const Wavefro
     if (save_next_ && screenshot.empty()) say("saved " + save);
     save_next_ = false;
 
+    const int shown_reduction = reduction_;
+    Tally& tally = reduced_ ? moving_ : full_;
+    tally.ms.push_back(frame_ms);
+    tally.width = settings.width;
+    tally.height = settings.height;
+    choose_reduction(std::max(0.0, frame_ms - frame.stats.compile_ms));   // a shader compile is not the frame's cost
+
+    // The title: what this frame was and what it cost.
     const double rays = double(frame.stats.traced_rays());
-    char title[256];
-    std::snprintf(title, sizeof title, "%s | %.1f ms | %.2f Mrays/s | %.1f tests/ray | depth %d%s%s%s%s%s",
-                  stage_.c_str(), frame_ms, frame_ms > 0.0 ? rays / (frame_ms * 1e3) : 0.0,
-                  rays > 0.0 ? double(frame.stats.counters.intersection_tests) / rays : 0.0, settings.max_depth,
-                  settings.effects.shadows ? " | shadows" : "", settings.effects.reflections ? " | reflections" : "",
+    char resolution[64], speed[64];
+    if (reduced_)
+        std::snprintf(resolution, sizeof resolution, "moving: %dx%d (1/%d)", settings.width, settings.height,
+                      shown_reduction);
+    else
+        std::snprintf(resolution, sizeof resolution, "%dx%d", settings.width, settings.height);
+    if (rays > 0.0 && frame_ms > 0.0)
+        std::snprintf(speed, sizeof speed, "%.2f M traced rays/s | %.1f ray-triangle tests per ray",
+                      rays / (frame_ms * 1e3), double(frame.stats.counters.intersection_tests) / rays);
+    else
+        std::snprintf(speed, sizeof speed, "no rays traced");
+    char title[320];
+    std::snprintf(title, sizeof title, "%s | %s | %.1f ms per frame | %s | depth %d%s%s%s%s%s", stage_.c_str(),
+                  resolution, frame_ms, speed, settings.max_depth, settings.effects.shadows ? " | shadows" : "",
+                  settings.effects.reflections ? " | reflections" : "",
                   settings.effects.refractions ? " | refractions" : "", heatmap_ ? " | heatmap" : "",
                   paused_ ? " | paused" : "");
     context.set_title(title);
     handle(context.take_input());
-    return open;
+
+    return open && !context.should_close();
+}
+
+bool Viewer::wait_for_change(GpuContext& context, const Scene& scene) {
+    // A still, refined view waits for input; a reduced one until it settles (then the frame refines it).
+    const bool animating = scene.animated && !paused_;
+    while (!dirty_ && !animating && !context.should_close()) {
+        if (reduced_) {
+            const double left = kSettleSeconds - std::chrono::duration<double>(Clock::now() - last_motion_).count();
+            if (left <= 0.0) break;
+            context.wait_events(left);
+        } else {
+            context.wait_events(0.5);
+        }
+        handle(context.take_input());
+    }
+    return !context.should_close();
 }
 
 }  // namespace rt::gpu

@@ -5,11 +5,18 @@
 // A key toggles only an effect the scene calls for (--effects), and a toggle changes the frame's Effects, so the
 // wavefront recompiles its passes for the new variant: an effect that is off has no code, exactly as in a headless
 // run with that --effects list (which renders the same image).
+//
+// Interactive on a software renderer: while the camera moves, each frame renders at 1/r of the resolution per axis
+// with one sample per pixel, shown scaled up; r (1, 2, 4, 8 or 16) is chosen from the measured frame times so a
+// moving frame takes about kMovingTargetMs. kSettleSeconds after the last movement the view renders once at full
+// resolution, and then nothing renders until an input (or a playing animation) changes the frame. Frames the run
+// writes (--frames, --screenshot) and frames the P key saves are always full resolution.
 #pragma once
 
 #include <chrono>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "../app/camera_control.h"
 #include "../app/renderer.h"
@@ -20,7 +27,14 @@ namespace rt::gpu {
 
 class Viewer {
 public:
-    explicit Viewer(std::string stage) : stage_(std::move(stage)) {}
+    // moving_scale: --moving-scale (0: auto, else the fixed 1/N of a moving frame).
+    explicit Viewer(std::string stage, int moving_scale = 0)
+        : stage_(std::move(stage)), fixed_reduction_(moving_scale), reduction_(moving_scale) {}
+    ~Viewer();   // prints the frame times (summary()), as it prints what each key did
+
+    static constexpr double kMovingTargetMs = 66.0;   // 15 frames per second
+    static constexpr double kSettleSeconds = 0.25;
+    static constexpr int kMaxReduction = 16;
 
     // The mouse and key list, one control a line (printed when the window opens; README.md has the same).
     static std::string key_help();
@@ -31,19 +45,30 @@ public:
     RenderSettings settings_for_frame(const RenderSettings& settings);
 
     // After the frame: shows it (the wavefront's image with the exposure applied, straight from the GPU; or the
-    // heatmap), writes the stage, frame time, Mrays/s and tests per ray into the title, saves the screenshot asked
-    // for (`screenshot`, else one the P key asked for), then takes the input for the next frame. Returns false once
-    // the user closed the window.
+    // heatmap), writes the stage, resolution, frame time, rays per second and tests per ray into the title, saves the
+    // screenshot asked for (`screenshot`, else one the P key asked for), then takes the input for the next frame.
+    // Returns false once the user closed the window.
     bool show(GpuContext& context, WindowPresenter& presenter, const Wavefront& wavefront, const FrameResult& frame,
               const RenderSettings& settings, double frame_ms, const std::string& screenshot);
+
+    // Before a frame only the window shows: returns at once when an input changed the view (or the scene is
+    // animated and playing); else sleeps until one does, or until a reduced view has settled (the frame then
+    // refines it). False when the user closed the window meanwhile (nothing to render).
+    bool wait_for_change(GpuContext& context, const Scene& scene);
+
+    // "N frames while moving (median X ms at WxH), M at full resolution (median Y ms at WxH)": what a user (and
+    // scripts/viewer-bench) reads off a session.
+    std::string summary() const;
 
 private:
     void handle(const WindowInput& input);
     void toggle(bool Effects::*effect, const char* name);
     std::string next_screenshot_name() const;
     void say(const std::string& line) const;
+    void choose_reduction(double frame_ms);
 
     std::string stage_;
+    int fixed_reduction_ = 0;             // --moving-scale N; 0: chosen from the frame times
     // The camera: the scene's own until the user moves it, then the rig's.
     bool camera_moved_ = false;
     CameraRig rig_;
@@ -58,6 +83,19 @@ private:
     bool heatmap_ = false;
     bool save_next_ = false;              // P: save the next frame (rendered with every input before it)
     std::chrono::steady_clock::time_point last_input_ = std::chrono::steady_clock::now();
+    // Interactive speed (see the top of this file).
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point last_motion_{};     // the last input that moved the camera
+    bool dirty_ = true;                   // an input changed what the next frame shows
+    bool reduced_ = false;                // the frame being rendered (then shown) is a reduced one
+    bool writes_frame_ = false;           // ... is one the run writes (never reduced)
+    int reduction_ = 0;                   // r of the next moving frame (0: not chosen yet)
+    double full_ms_ = 0.0;                // the last full-resolution frame's time
+    struct Tally {
+        std::vector<double> ms;
+        int width = 0, height = 0;
+    };
+    Tally moving_, full_;
 };
 
 }  // namespace rt::gpu

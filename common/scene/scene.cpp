@@ -205,6 +205,7 @@ glm::vec4 world_tangent(const glm::mat3& m, bool mirrors, const glm::vec4& t) {
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles) {
     Scene scene;
     scene.name = asset.name;
+    scene.animated = !asset.animations.empty();
     scene.background = glm::clamp(asset.background, glm::vec3(0.0f), glm::vec3(kMaxRadiance));
     scene.materials = asset.materials;
     scene.textures = asset.textures;

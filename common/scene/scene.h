@@ -218,6 +218,8 @@ struct Scene {
     // Documented defaults (docs/shading.md) applied because the asset had none; reported in the stats.
     bool default_camera = false;
     bool default_light = false;
+    // The asset has animations: a later time is another frame (the viewer keeps rendering; a still one idles).
+    bool animated = false;
     std::size_t triangle_count() const { return material_ids.size(); }
 };
 
