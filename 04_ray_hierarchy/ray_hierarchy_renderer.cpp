@@ -20,12 +20,12 @@ void RayHierarchyRenderer::add_options(CLI::App& app) {
     GpuStage::add_options(app);
     app.add_option("--branching", hierarchy_options.branching, "Children per node of the ray hierarchy: 4, 8 or 16")
         ->capture_default_str()
-        ->check(CLI::IsMember({4, 8, 16}));
+        ->check(whole_number_of({4, 8, 16}));
     app.add_option("--levels", hierarchy_options.levels,
                    "Upper levels of the hierarchy used above the rays (0 = all, up to a single root; default 3: with the object "
                    "tree, the levels above add node tests and steps and cull nothing more)")
         ->capture_default_str()
-        ->check(CLI::Range(0, 32));
+        ->check(whole_number_in(0, 32));
     app.add_option_function<std::string>(
            "--objects",
            [this](const std::string& s) {

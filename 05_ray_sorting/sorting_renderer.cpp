@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/app/options.h"
 #include "common/gpu/bindings.h"
 
 namespace rt {
@@ -28,18 +29,18 @@ void RaySortingRenderer::add_options(CLI::App& app) {
     app.add_option("--key-bits", sort_options.key_bits,
                    "Bits of a ray's key for its origin cell (cubic cells over the scene box) and direction cell")
         ->capture_default_str()
-        ->check(CLI::Range(1, 32));
+        ->check(whole_number_in(1, 32));
     app.add_option("--direction-bits", sort_options.direction_bits,
                    "Of the key bits, those of the coarse direction cell above the origin in reflection and "
                    "refraction rays' keys")
         ->capture_default_str()
-        ->check(CLI::Range(0, 32));
+        ->check(whole_number_in(0, 32));
     CLI::Option* shadow_bits =
         app.add_option("--shadow-direction-bits", sort_options.shadow_direction_bits,
                        "Of the key bits, those of the direction cell below the origin in shadow rays' keys (the "
                        "default gives way to half of a --key-bits below it)")
             ->capture_default_str()
-            ->check(CLI::Range(0, 32));
+            ->check(whole_number_in(0, 32));
     app.parse_complete_callback([this, shadow_bits] {
         for (auto [name, bits] : {std::pair{"--direction-bits", sort_options.direction_bits},
                                   {"--shadow-direction-bits", sort_options.shadow_direction_bits}})

@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "../scene/whole_file.h"
 #include "../scene/builtin_scenes.h"
 #include "../scene/gltf_io.h"
 #include "atomic_file.h"
@@ -90,26 +91,10 @@ void print_summary(const std::string& stage, const std::string& scene, const Ren
     print(line + (out.empty() ? std::string() : "  -> " + out) + "\n");
 }
 
-void write_json_file(const std::string& file, const nlohmann::json& json) {
-    std::ofstream out(file, std::ios::trunc);
-    out << json.dump(2) << '\n';
-    out.close();
-    if (!out) throw std::runtime_error("write failed");
-}
+void write_json_file(const std::string& file, const nlohmann::json& json) { write_whole_file(file, json.dump(2) + "\n"); }
 
-// save_gltf writes through its own temporary beside its target, ".<name>.tmp"; an interrupt removes that one too.
-void save_gltf_into(const SceneAsset& asset, const std::string& file) {
-    const std::filesystem::path p(file);
-    const std::string its_temporary = (p.parent_path() / ("." + p.filename().string() + ".tmp")).string();
-    remove_on_interrupt(its_temporary);
-    try {
-        save_gltf(asset, file);
-    } catch (...) {
-        forget_on_interrupt(its_temporary);
-        throw;
-    }
-    forget_on_interrupt(its_temporary);
-}
+// The run's own temporary (RunOutputs) receives the bytes; its extension is the target's, which picks the format.
+void save_gltf_into(const SceneAsset& asset, const std::string& file) { write_whole_file(file, gltf_file_bytes(asset, file)); }
 
 int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     CLI::App app{stage + ": one stage of the ray-tracing course (see " + stage + "/README.md)", stage};
@@ -268,18 +253,38 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
 
 }  // namespace
 
+std::string one_printable_line(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '\n') out += "\\n";
+        else if (c == '\r') out += "\\r";
+        else if (c == '\t') out += "\\t";
+        else if (u < 0x20 || u == 0x7f) {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", u);
+            out += hex;
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 int run_stage(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     std::signal(SIGPIPE, SIG_IGN);   // a closed stdout is an error on write (see print), not the end of the run
+    // An error is one line whatever a file name in it holds: control characters are written as escapes.
+    const auto error = [&](const std::exception& e) { std::cerr << stage << ": error: " << one_printable_line(e.what()) << "\n"; };
     try {
         return run(stage, argc, argv, renderer);
     } catch (const InputError& e) {
-        std::cerr << stage << ": error: " << e.what() << "\n";
+        error(e);
         return 2;
     } catch (const SceneError& e) {
-        std::cerr << stage << ": error: " << e.what() << "\n";
+        error(e);
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << stage << ": error: " << e.what() << "\n";
+        error(e);
         return 1;
     }
 }

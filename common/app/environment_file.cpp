@@ -22,7 +22,7 @@ namespace rt {
 namespace {
 
 [[noreturn]] void refuse(const std::string& file, const std::string& problem) {
-    throw InputError("environment " + file + ": " + problem);
+    throw InputError("--environment " + file + ": " + problem);
 }
 
 std::string number(double v) {

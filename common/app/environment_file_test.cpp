@@ -111,7 +111,7 @@ TEST(EnvironmentFile, OneChannelIsGreyTwoAreRefusedAlphaIsIgnored) {
         make_environment("two.exr", 2, 1, 2, {0, 0, 0, 0}, 0.0f, 1.0f);
         ADD_FAILURE() << "2 channels accepted";
     } catch (const InputError& e) {
-        EXPECT_STREQ(e.what(), "environment two.exr: has 2 channels: need 1 (grey) or 3 or more (RGB)");
+        EXPECT_STREQ(e.what(), "--environment two.exr: has 2 channels: need 1 (grey) or 3 or more (RGB)");
     }
     const Environment rgba = make_environment("rgba.exr", 1, 1, 4, {1, 2, 3, -7}, 0.0f, 1.0f);
     EXPECT_EQ(rgba.texels[0], glm::vec4(1.0f, 2.0f, 3.0f, 1.0f));

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "../scene/whole_file.h"
+
 namespace rt {
 
 // The file is the structs' bytes as they lie in memory: the format is little-endian, like every machine this course
@@ -13,11 +15,9 @@ namespace rt {
 static_assert(std::endian::native == std::endian::little, "hit files are little-endian");
 
 void write_hit_file(const std::string& file, const std::vector<HitRecord>& hits) {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    out.write(kHitFileMagic, sizeof kHitFileMagic);
-    out.write(reinterpret_cast<const char*>(hits.data()), std::streamsize(hits.size() * sizeof(HitRecord)));
-    out.close();
-    if (!out) throw std::runtime_error("cannot write " + file);
+    std::string bytes(kHitFileMagic, sizeof kHitFileMagic);
+    bytes.append(reinterpret_cast<const char*>(hits.data()), hits.size() * sizeof(HitRecord));
+    write_whole_file(file, bytes);   // throws with the cause (e.g. "no space left on device")
 }
 
 std::vector<HitRecord> read_hit_file(const std::string& path) {

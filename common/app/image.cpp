@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "../scene/whole_file.h"
 #include "../trace/shading.h"
 #include "atomic_file.h"
 
 #ifdef RT_PORTABLE
 #include <stb/stb_image_write.h>
 #else
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 #endif
@@ -74,18 +76,30 @@ void write_image(const std::string& path, const Image& image) {
     commit_temporary(tmp, path);
 }
 
+// The image is encoded into memory (OpenImageIO's IOVecOutput proxy; stb's callback in the portable build), then
+// written by write_whole_file, which checks every write: OpenImageIO's PNG writer does not report a short write, and
+// libjpeg's error handler would end the process (issue 21). So a full disk is one error line, never a truncated
+// image.
 void write_image_file(const std::string& file, const Image& image) {
     const std::string ext = lower_extension(file);
     bool ok = false;
     std::string error;
+    std::vector<unsigned char> encoded;
 #ifdef RT_PORTABLE
     const std::vector<std::uint8_t> bytes = to_srgb8(image);
-    ok = stbi_write_png(file.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3) != 0;
+    const auto append = [](void* context, void* data, int size) {
+        auto& out = *static_cast<std::vector<unsigned char>*>(context);
+        out.insert(out.end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    };
+    ok = stbi_write_png_to_func(append, &encoded, image.width, image.height, 3, bytes.data(), image.width * 3) != 0;
     if (!ok) error = "stb_image_write failed";
 #else
+    OIIO::Filesystem::IOVecOutput memory(encoded);
     auto out = OIIO::ImageOutput::create(file);
     if (!out) {
         error = OIIO::geterror();
+    } else if (!out->supports("ioproxy") || !out->set_ioproxy(&memory)) {
+        error = out->format_name() + std::string(" writer cannot encode into memory");
     } else if (is_float_format(ext)) {
         OIIO::ImageSpec spec(image.width, image.height, 3, ext == ".exr" ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
         if (ext == ".exr") spec.format = OIIO::TypeDesc::FLOAT;   // full float: the NaN/Inf checks need exact values
@@ -99,8 +113,14 @@ void write_image_file(const std::string& file, const Image& image) {
         ok = out->open(file, spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) && out->close();
         if (!ok) error = out->geterror();
     }
+    out.reset();   // flushes into `encoded` before it is written
 #endif
+    if (ok && encoded.empty()) {
+        ok = false;
+        error = "the image writer produced no bytes";
+    }
     if (!ok) throw std::runtime_error(error.empty() ? std::string("the image library failed") : error);
+    write_whole_file(file, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 Image read_image(const std::string& path) {

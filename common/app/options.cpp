@@ -1,11 +1,15 @@
 #include "options.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -27,19 +31,73 @@ std::string readable(double v) {
 
 }  // namespace
 
+namespace {
+
+// What every number on the command line must look like before it is read: no blanks anywhere (strtod would skip
+// leading ones and CLI11 would then refuse the value without saying why), no hexadecimal ("0x10" is 16 to strtod),
+// no "inf" or "nan".
+std::string refuse_shape(const std::string& text) {
+    if (text.empty()) return "the value is empty (expected a number)";
+    if (std::any_of(text.begin(), text.end(), [](unsigned char c) { return std::isspace(c); }))
+        return "'" + text + "' holds a blank (expected a number)";
+    if (text.find_first_of("xX") != std::string::npos) return "'" + text + "' is not a decimal number";
+    return {};
+}
+
+}  // namespace
+
 CLI::Validator number_in(double lo, double hi, bool exclusive_lo) {
     const std::string bounds = (exclusive_lo ? "above " : "at least ") + readable(lo) + " and at most " + readable(hi);
     const std::string description = "NUMBER " + bounds;
     return CLI::Validator(
         [=](std::string& text) -> std::string {
+            if (std::string why = refuse_shape(text); !why.empty()) return why;
             char* end = nullptr;
+            errno = 0;
             const double v = std::strtod(text.c_str(), &end);
             if (end == text.c_str() || *end != '\0') return "'" + text + "' is not a number";
-            if (!std::isfinite(v)) return text + " is not a finite number";
+            if (!std::isfinite(v) || (errno == ERANGE && std::fabs(v) > 1.0)) return text + " is not a finite number";
             if (v < lo || v > hi || (exclusive_lo && v == lo)) return text + " is out of range: must be " + bounds;
+            // Hand CLI11 the number in one spelling it reads back exactly (17 digits round-trip a double).
+            char exact[40];
+            std::snprintf(exact, sizeof exact, "%.17g", v == 0.0 ? 0.0 : v);
+            text = exact;
             return std::string();
         },
         description);
+}
+
+CLI::Validator whole_number_in(long long lo, long long hi) {
+    const std::string bounds = "at least " + std::to_string(lo) + " and at most " + std::to_string(hi);
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            if (std::string why = refuse_shape(text); !why.empty()) return why;
+            const std::size_t digits = text[0] == '-' || text[0] == '+' ? 1 : 0;
+            if (digits == text.size() || text.find_first_not_of("0123456789", digits) != std::string::npos)
+                return "'" + text + "' is not a whole number";
+            errno = 0;
+            char* end = nullptr;
+            const long long v = std::strtoll(text.c_str(), &end, 10);   // base 10: "010" is 10, not octal 8
+            if (errno == ERANGE || v < lo || v > hi) return text + " is out of range: must be " + bounds;
+            text = std::to_string(v);   // "-0" and "+08" become "0" and "8": CLI11 reads a leading 0 as octal
+            return std::string();
+        },
+        "WHOLE NUMBER " + bounds);
+}
+
+CLI::Validator whole_number_of(const std::vector<long long>& allowed) {
+    std::string list;
+    for (std::size_t i = 0; i < allowed.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == allowed.size() ? " or " : ", ") + std::to_string(allowed[i]);
+    const CLI::Validator whole = whole_number_in(LLONG_MIN, LLONG_MAX);
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            if (std::string why = whole(text); !why.empty()) return why;
+            if (std::find(allowed.begin(), allowed.end(), std::stoll(text)) == allowed.end())
+                return text + " is not one of " + list;
+            return std::string();
+        },
+        "ONE OF " + list);
 }
 
 glm::vec3 parse_background(const std::string& text) {
@@ -66,20 +124,20 @@ glm::vec3 parse_background(const std::string& text) {
 void add_shared_options(CLI::App& app, Options& o) {
     app.add_option("--scene", o.scene, "builtin:NAME (" + builtin_scene_list() + ") or a .gltf/.glb file")
         ->capture_default_str();
-    app.add_option("--width", o.render.width, "Image width in pixels")->capture_default_str()->check(number_in(1, 16384));
-    app.add_option("--height", o.render.height, "Image height in pixels")->capture_default_str()->check(number_in(1, 16384));
+    app.add_option("--width", o.render.width, "Image width in pixels")->capture_default_str()->check(whole_number_in(1, 16384));
+    app.add_option("--height", o.render.height, "Image height in pixels")->capture_default_str()->check(whole_number_in(1, 16384));
     app.add_option("--out", o.out, ".png/.jpg (sRGB 8-bit) or .exr/.hdr (linear float); with --frames, w.png writes w_0000.png, ...");
     app.add_option("--camera", o.camera, "glTF camera index (default: the first camera, else an auto-framed one)")
-        ->check(number_in(0, INT_MAX));
+        ->check(whole_number_in(0, INT_MAX));
     app.add_option("--max-depth", o.render.max_depth, "Whitted recursion depth (0 = no reflection/refraction rays)")
-        ->capture_default_str()->check(number_in(0, 64));
+        ->capture_default_str()->check(whole_number_in(0, 64));
     app.add_option("--effects", o.effects,
                    "auto (what the scene calls for), all, none, or a comma list of shadows,reflections,refractions,textures,absorption,normal_maps,cutouts")
         ->capture_default_str()
         ->check(CLI::Validator([](std::string& s) { return is_valid_effects_spec(s) ? std::string() : "unknown effect in '" + s + "'"; }, "EFFECTS"));
     app.add_option("--stats", o.stats, "Write the frame's statistics as JSON");
     app.add_flag("--quiet", o.render.quiet, "No progress bar or summary line");
-    app.add_option("--threads", o.render.threads, "CPU threads (0 = all)")->capture_default_str()->check(number_in(0, 1024));
+    app.add_option("--threads", o.render.threads, "CPU threads (0 = all)")->capture_default_str()->check(whole_number_in(0, 1024));
     app.add_option("--export", o.export_path, "Write the scene as glTF 2.0 (.gltf or .glb) to open it in Blender");
     // Diagnostics (with --frames, one file per frame like --out).
     app.add_option("--dump-hits", o.dump_hits, "Write every traced ray and its hit to FILE (common/app/hit_record.h)");
@@ -88,13 +146,13 @@ void add_shared_options(CLI::App& app, Options& o) {
              "Colour scale of --heatmap");
     app.add_option("--heatmap-max", o.heatmap_max,
                    "Top of --heatmap's scale (from 0; larger counts take the top colour), to compare two heatmaps")
-        ->check(number_in(1, 4e9));
+        ->check(whole_number_in(1, 4000000000));
     app.add_option("--frames", o.frames, "Number of frames for animated scenes (at most 10000)")->capture_default_str()
-        ->check(number_in(1, kMaxFrames));
+        ->check(whole_number_in(1, kMaxFrames));
     app.add_option("--fps", o.fps, "Frames per second (frame i is rendered at t = i / fps)")->capture_default_str()
         ->check(number_in(1e-3, 1e4));
     app.add_option("--max-triangles", o.max_triangles, "Refuse scenes with more triangles per frame than this")
-        ->capture_default_str()->check(number_in(1, 4e9));
+        ->capture_default_str()->check(whole_number_in(1, 4000000000));
     // Accuracy knobs (docs/accuracy.md measures what each costs).
     add_enum(app, "--intersect", o.render.intersect,
              {{"moller", IntersectMethod::Moller}, {"watertight", IntersectMethod::Watertight}},
@@ -149,7 +207,7 @@ void add_shared_options(CLI::App& app, Options& o) {
         ->capture_default_str()->check(number_in(-kMaxEnvironmentRotation, kMaxEnvironmentRotation))->needs(environment);
     app.add_option("--environment-intensity", o.environment_intensity, "Scale the --environment map's radiance")
         ->capture_default_str()->check(number_in(0, kMaxEnvironmentIntensity))->needs(environment);
-    app.add_option("--spp", o.render.spp, "Samples per pixel (anti-aliasing)")->capture_default_str()->check(number_in(1, 4096));
+    app.add_option("--spp", o.render.spp, "Samples per pixel (anti-aliasing)")->capture_default_str()->check(whole_number_in(1, 4096));
 }
 
 void validate_options(const Options& o) {

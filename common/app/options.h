@@ -62,7 +62,14 @@ CLI::Option* add_enum(CLI::App& app, const std::string& name, E& value, const st
 // The one validator of every numeric option (floating or integer): the value must be a finite number in [lo, hi], or
 // in (lo, hi] when `exclusive_lo`. NaN and Inf are refused. Errors are one line with readable bounds:
 // "--fps: nan is not a finite number", "--width: 0 is out of range: must be at least 1 and at most 16384".
+// Blanks, hexadecimal and an empty value are refused too. The value is handed on rewritten as "%.17g".
 CLI::Validator number_in(double lo, double hi, bool exclusive_lo = false);
+// The same for integer options: only [+-]digits, read in base 10, in [lo, hi] ("4.0", "1e3", "" are refused with the
+// reason; "08" is 8). Every integer option uses this or whole_number_of: CLI11's own conversion refuses without a
+// reason, reads "010" as octal, and its IsMember let "" through as 0 (a division by zero in --branching).
+CLI::Validator whole_number_in(long long lo, long long hi);
+// An integer option with a few allowed values: whole_number_in's checks, then membership ("5 is not one of 4, 8 or 16").
+CLI::Validator whole_number_of(const std::vector<long long>& allowed);
 
 // --background's value: "R,G,B", three finite numbers in [0, kMaxRadiance] (linear radiance). Throws
 // std::invalid_argument with one line otherwise.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../scene/builtin_scenes.h"
+#include "driver.h"
 #include "options.h"
 
 namespace rt {
@@ -60,6 +61,64 @@ TEST(SharedOptions, HelpAndUnknownSceneErrorGiveTheSameList) {
     EXPECT_EQ(error_list, builtin_scene_list()) << error;
     EXPECT_EQ(help_list, error_list);
     EXPECT_EQ(names_in(error_list), builtin_scene_names()) << error;
+}
+
+// What a validator makes of `text`: "" when it accepts (then `text` is what CLI11 reads), else its reason.
+std::string check(const CLI::Validator& v, std::string& text) { return v(text); }
+
+TEST(NumberValidators, IntegerOptionsRefuseEverythingButDecimalWholeNumbersAndSayWhy) {
+    const CLI::Validator v = whole_number_in(0, 32);
+    for (const std::string bad : {"", " ", " 4", "4 ", "4.0", "1e1", "0x10", "nan", "inf", "4-", "--4", "+", "-1", "33",
+                                  "99999999999999999999"}) {
+        std::string text = bad;
+        EXPECT_NE(check(v, text), "") << "'" << bad << "' was accepted";
+    }
+    std::string text = "-0";
+    EXPECT_EQ(check(v, text), "");
+    EXPECT_EQ(text, "0");
+    text = "08";   // CLI11 alone reads a leading 0 as octal (and refuses 08)
+    EXPECT_EQ(check(v, text), "");
+    EXPECT_EQ(text, "8");
+    text = "+32";
+    EXPECT_EQ(check(v, text), "");
+    EXPECT_EQ(text, "32");
+    text = "4.0";
+    EXPECT_EQ(check(v, text), "'4.0' is not a whole number");
+    text = "";
+    EXPECT_EQ(check(v, text), "the value is empty (expected a number)");
+}
+
+TEST(NumberValidators, AnIntegerSetRefusesTheEmptyStringInsteadOfReadingItAsZero) {
+    const CLI::Validator v = whole_number_of({4, 8, 16});
+    for (const std::string bad : {"", " ", "0", "5", "4.0", "0x10", " 8"}) {
+        std::string text = bad;
+        EXPECT_NE(check(v, text), "") << "'" << bad << "' was accepted";
+    }
+    std::string text = "5";
+    EXPECT_EQ(check(v, text), "5 is not one of 4, 8 or 16");
+    text = "016";
+    EXPECT_EQ(check(v, text), "");
+    EXPECT_EQ(text, "16");
+}
+
+TEST(NumberValidators, FloatOptionsRefuseBlanksHexAndNonFiniteValuesAndPassOnAnExactSpelling) {
+    const CLI::Validator v = number_in(0, 1e6, true);
+    for (const std::string bad : {"", " ", " 1", "1 ", "0x10", "0X1p3", "nan", "inf", "1e400", "-1e400", "0", "-0", "x"}) {
+        std::string text = bad;
+        EXPECT_NE(check(v, text), "") << "'" << bad << "' was accepted";
+    }
+    std::string text = "0.1";
+    EXPECT_EQ(check(v, text), "");
+    EXPECT_EQ(std::stod(text), 0.1);   // the same double, whatever the spelling
+    text = "4.0";
+    EXPECT_EQ(check(v, text), "");
+    EXPECT_EQ(text, "4");
+}
+
+TEST(ErrorLines, ControlCharactersInAMessageAreEscapedSoItStaysOneLine) {
+    EXPECT_EQ(one_printable_line("cannot read scene a\nb.gltf"), "cannot read scene a\\nb.gltf");
+    EXPECT_EQ(one_printable_line(std::string("x\ty\rz\x01\x7f")), "x\\ty\\rz\\x01\\x7f");
+    EXPECT_EQ(one_printable_line("caf\xc3\xa9.gltf"), "caf\xc3\xa9.gltf");   // UTF-8 stays as it is
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "../scene/whole_file.h"
 #include "atomic_file.h"
 
 namespace rt {
@@ -45,13 +46,11 @@ nlohmann::json make_stats_json(const std::string& stage, const std::string& scen
 
 void write_json(const std::string& path, const nlohmann::json& json) {
     const std::string tmp = temporary_sibling(path);
-    {
-        std::ofstream out(tmp);
-        out << json.dump(2) << '\n';
-        if (!out) {
-            discard_temporary(tmp);
-            throw std::runtime_error("cannot write " + path);
-        }
+    try {
+        write_whole_file(tmp, json.dump(2) + "\n");
+    } catch (const std::runtime_error& e) {
+        discard_temporary(tmp);
+        throw std::runtime_error("cannot write " + path + ": " + e.what());
     }
     commit_temporary(tmp, path);
 }

@@ -21,7 +21,7 @@ void EnvironmentTexture::upload(const std::shared_ptr<const Environment>& enviro
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (environment->width > max_size || environment->height > max_size) {
         environment_ = nullptr;
-        throw SceneError("environment " + environment->file + ": " + std::to_string(environment->width) + "x" +
+        throw SceneError("--environment " + environment->file + ": " + std::to_string(environment->width) + "x" +
                          std::to_string(environment->height) + " is larger than this GPU's textures (" +
                          "GL_MAX_TEXTURE_SIZE " + std::to_string(max_size) + ")");
     }

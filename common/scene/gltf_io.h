@@ -24,5 +24,7 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings = nullptr);
 // extensions as the loader, so load_gltf(save_gltf(a)) reproduces a's triangles, materials, lights and cameras.
 // Writes to a temporary file and renames it, so a failure leaves nothing half-written.
 void save_gltf(const SceneAsset& asset, const std::string& path);
+// The bytes save_gltf writes (the format from path's extension), for a caller that manages its own temporary.
+std::string gltf_file_bytes(const SceneAsset& asset, const std::string& path);
 
 }  // namespace rt

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <sstream>
 #include <system_error>
 
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
 #include "gltf_common.h"
+#include "whole_file.h"
 
 namespace rt {
 
@@ -312,7 +314,7 @@ struct Writer {
 
 }  // namespace
 
-void save_gltf(const SceneAsset& asset, const std::string& path) {
+std::string gltf_file_bytes(const SceneAsset& asset, const std::string& path) {
     const std::string prefix = "cannot save scene " + path + ": ";
     const std::string ext = lower_extension(path);
     if (ext != ".gltf" && ext != ".glb")
@@ -324,25 +326,32 @@ void save_gltf(const SceneAsset& asset, const std::string& path) {
     } catch (const Invalid& e) {
         throw SceneError(prefix + one_line(e.reason));
     }
+    // Into memory (buffers and images embedded), so the bytes reach the disk through write_whole_file, which reports
+    // a short write: tinygltf's own file writer does not (issue 21: "exported" with a third of the file written).
+    std::ostringstream bytes;
+    tinygltf::TinyGLTF gltf;
+    bool ok = false;
+    try {
+        ok = gltf.WriteGltfSceneToStream(&writer.model, bytes, /*prettyPrint=*/true, /*writeBinary=*/ext == ".glb");
+    } catch (const std::exception& e) {
+        throw SceneError(prefix + one_line(e.what()));
+    }
+    if (!ok || !bytes || bytes.view().empty()) throw SceneError(prefix + "encoding failed");
+    return std::move(bytes).str();
+}
 
+void save_gltf(const SceneAsset& asset, const std::string& path) {
+    const std::string bytes = gltf_file_bytes(asset, path);
     // Write next to the destination, then rename: the destination is either the old file or the complete new one.
     const fs::path target(path);
     const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".tmp");
-    tinygltf::TinyGLTF gltf;
-    const bool binary = ext == ".glb";
-    bool ok = false;
-    try {
-        ok = gltf.WriteGltfSceneToFile(&writer.model, temp.string(), /*embedImages=*/true, /*embedBuffers=*/true,
-                                       /*prettyPrint=*/true, binary);
-    } catch (const std::exception& e) {
-        std::error_code ec;
-        fs::remove(temp, ec);
-        throw SceneError(prefix + one_line(e.what()));
-    }
+    const std::string prefix = "cannot save scene " + path + ": ";
     std::error_code ec;
-    if (!ok || !fs::is_regular_file(temp, ec) || fs::file_size(temp, ec) == 0) {
+    try {
+        write_whole_file(temp.string(), bytes);
+    } catch (const std::runtime_error& e) {
         fs::remove(temp, ec);
-        throw SceneError(prefix + "writing failed");
+        throw SceneError(prefix + e.what());
     }
     fs::rename(temp, target, ec);
     if (ec) {
