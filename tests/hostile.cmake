@@ -7,6 +7,8 @@
 #                                  " 4" and its bounds: runs or is refused in one line naming the option, never a
 #                                  crash (tests/hostile_options.py). The options 01_naive has are parsed by shared
 #                                  code and tested there once; the GPU stages test their own.
+#   gpu.<stage>.broken_driver      GALLIUM_DRIVER=bogus on every backend and a missing libOSMesa: one error line,
+#                                  exit 1, nothing changed or left behind (tests/broken_driver.py).
 if(RT_PYTHON3)
   foreach(stage IN LISTS RT_STAGES)
     add_test(NAME writes.${stage}.full_disk
@@ -21,5 +23,11 @@ if(RT_PYTHON3)
              COMMAND ${RT_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/hostile_options.py --bin-dir ${CMAKE_BINARY_DIR}/bin
                      --stage ${stage} --work ${CMAKE_BINARY_DIR}/test-output/options/${stage} ${own})
     set_tests_properties(options.${stage}.hostile_values PROPERTIES LABELS "options;hostile" TIMEOUT 900)
+    if(stage IN_LIST RT_GPU_STAGES)
+      add_test(NAME gpu.${stage}.broken_driver
+               COMMAND ${RT_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/broken_driver.py --bin-dir ${CMAKE_BINARY_DIR}/bin
+                       --stage ${stage} --work ${CMAKE_BINARY_DIR}/test-output/broken_driver/${stage})
+      set_tests_properties(gpu.${stage}.broken_driver PROPERTIES LABELS "gpu;hostile" TIMEOUT 600)
+    endif()
   endforeach()
 endif()

@@ -126,7 +126,7 @@ GpuContext create_context(const GpuOptions& options) {
                 impl = create_osmesa_context(options.debug);
                 impl->fallback_log = egl_error.what();
             } catch (const std::exception& osmesa_error) {
-                throw std::runtime_error(std::string("no GL 4.5 context: ") + egl_error.what() + " | " +
+                throw std::runtime_error(std::string("no GL 4.5 context: ") + egl_error.what() + "; " +
                                          osmesa_error.what());
             }
         }

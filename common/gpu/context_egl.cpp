@@ -1,5 +1,6 @@
 // The EGL backend: a hardware device through EGL_EXT_platform_device when there is one, else Mesa's surfaceless
 // platform (llvmpipe). Contexts are surfaceless: no default framebuffer, the stages render into FBOs and SSBOs.
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -117,6 +118,9 @@ bool try_egl_display(EglContext& impl, EGLDisplay display, bool debug, std::stri
 }  // namespace
 
 std::unique_ptr<GpuContext::Impl> create_egl_context(bool debug) {
+    // Mesa's EGL prints its own warnings ("libEGL warning: egl: failed to create dri2 screen") before failing; the
+    // failure is reported in our one error line, so keep Mesa to fatal messages unless the user set a level.
+    setenv("EGL_LOG_LEVEL", "fatal", /*overwrite=*/0);
     auto impl = std::make_unique<EglContext>();
     std::string log;
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);   // client extensions (EGL_EXT_client_extensions)
@@ -163,6 +167,7 @@ std::unique_ptr<GpuContext::Impl> create_egl_context(bool debug) {
     } else {
         log += "no EGL_MESA_platform_surfaceless; ";
     }
+    while (!log.empty() && (log.back() == ' ' || log.back() == ';')) log.pop_back();
     throw std::runtime_error("EGL: " + log);
 }
 

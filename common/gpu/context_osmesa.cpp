@@ -1,8 +1,16 @@
 // The OSMesa backend: Mesa's off-screen context (llvmpipe), dlopen'ed only when chosen, so that no build needs
 // libOSMesa to link and a machine without it still runs on EGL.
 #include <dlfcn.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
+#include <string>
+#include <thread>
 
 #include "context_backend.h"
 
@@ -45,12 +53,47 @@ struct OsmesaContext final : GpuContext::Impl {
     }
 };
 
+// A broken Mesa (GALLIUM_DRIVER naming a driver that does not exist, a half-installed libgallium) crashes inside
+// OSMesaCreateContextAttribs instead of returning null. So the first context is made in a child process first: if
+// the child dies or hangs, the run fails with one line instead of a segfault (issue 21). It costs one extra context
+// creation (tens of milliseconds on llvmpipe), only when OSMesa is the backend.
+void probe_in_child(osmesa::CreateContextAttribsFn create, osmesa::MakeCurrentFn make_current, const int* attribs) {
+    const pid_t child = fork();
+    if (child < 0) return;   // cannot probe: try for real
+    if (child == 0) {
+        std::vector<std::uint8_t> buffer(16 * 16 * 4);
+        const osmesa::Context c = create(attribs, nullptr);
+        _exit(c && make_current(c, buffer.data(), osmesa::kUnsignedByte, 16, 16) ? 0 : 3);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    int status = 0;
+    while (waitpid(child, &status, WNOHANG) == 0) {
+        if (std::chrono::steady_clock::now() > deadline) {
+            kill(child, SIGKILL);
+            waitpid(child, &status, 0);
+            throw std::runtime_error("OSMesa: creating a context did not finish in 60 s");
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    if (WIFSIGNALED(status)) {
+        const char* driver = std::getenv("GALLIUM_DRIVER");
+        throw std::runtime_error(std::string("OSMesa: creating a context crashed (") + strsignal(WTERMSIG(status)) +
+                                 ")" + (driver ? std::string(": is GALLIUM_DRIVER=") + driver + " a Mesa driver?"
+                                               : std::string(": is Mesa installed completely?")));
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 3)
+        throw std::runtime_error("OSMesa: OSMesaCreateContextAttribs(4.5 core) failed");
+}
+
 }  // namespace
 
 std::unique_ptr<GpuContext::Impl> create_osmesa_context(bool debug) {
     (void)debug;   // OSMesa has no debug-context attribute; GL_KHR_debug output still works
-    void* lib = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
-    if (!lib) throw std::runtime_error(std::string("OSMesa: dlopen(libOSMesa.so.8): ") + dlerror());
+    // RT_OSMESA_LIBRARY names another libOSMesa (a Mesa built by hand; the tests name a missing one).
+    const char* override = std::getenv("RT_OSMESA_LIBRARY");
+    const std::string name = override && *override ? override : "libOSMesa.so.8";
+    void* lib = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!lib) throw std::runtime_error("OSMesa: dlopen(" + name + "): " + dlerror());
     auto impl = std::make_unique<OsmesaContext>();
     auto create = reinterpret_cast<osmesa::CreateContextAttribsFn>(dlsym(lib, "OSMesaCreateContextAttribs"));
     impl->make_current_fn = reinterpret_cast<osmesa::MakeCurrentFn>(dlsym(lib, "OSMesaMakeCurrent"));
@@ -60,6 +103,7 @@ std::unique_ptr<GpuContext::Impl> create_osmesa_context(bool debug) {
         throw std::runtime_error("OSMesa: libOSMesa.so.8 lacks OSMesaCreateContextAttribs and friends");
     const int attribs[] = {osmesa::kFormat, int(osmesa::kRgba), osmesa::kDepthBits, 24,
                            osmesa::kProfile, osmesa::kCoreProfile, osmesa::kMajor, 4, osmesa::kMinor, 5, 0};
+    probe_in_child(create, impl->make_current_fn, attribs);
     impl->context = create(attribs, nullptr);
     if (!impl->context) throw std::runtime_error("OSMesa: OSMesaCreateContextAttribs(4.5 core) failed");
     impl->make_native_current();
