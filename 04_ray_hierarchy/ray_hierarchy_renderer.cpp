@@ -16,6 +16,15 @@ RayHierarchyRenderer::RayHierarchyRenderer()
                 [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); }}) {}
 RayHierarchyRenderer::~RayHierarchyRenderer() = default;
 
+std::string RayHierarchyRenderer::unsupported(const Scene&, const RenderSettings& settings) const {
+    // The leaf pass with the opacity test (cut-outs) binds 16 storage blocks, GL 4.5's guaranteed minimum and
+    // llvmpipe's limit; counting tests per pixel would be the 17th, and the link fails after the compile.
+    if (settings.record_tests_per_pixel && settings.effects.cutouts)
+        return "--heatmap: not available in this stage for a scene with cut-outs (the leaf pass would need 17 GL "
+               "storage blocks; GL 4.5 guarantees 16): use stage 03, or --effects without cutouts";
+    return {};
+}
+
 void RayHierarchyRenderer::add_options(CLI::App& app) {
     GpuStage::add_options(app);
     app.add_option("--branching", hierarchy_options.branching, "Children per node of the ray hierarchy: 4, 8 or 16")

@@ -19,6 +19,10 @@ function(rt_add_cli_tests stage)
       "bad_image_type|--out|@DIR@/bad_image_type.bmp"
       "out_folder_missing|--out|@DIR@/no/such/folder/x.png"
       "camera_out_of_range|--camera|7|--out|@DIR@/camera_out_of_range.png")
+  if(stage MATCHES "^0[45]_")
+    # 04 and 05 cannot count tests per pixel with cut-outs (16 storage blocks): refused before rendering.
+    list(APPEND cases "heatmap_cutouts|--scene|builtin:cutouts|--width|16|--height|12|--heatmap|@DIR@/h.png|--out|@DIR@/heatmap_cutouts.png")
+  endif()
   foreach(case IN LISTS cases)
     # Arguments travel to the script "|"-separated (a ";" would split the test command).
     string(FIND "${case}" "|" bar)

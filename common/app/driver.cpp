@@ -1,6 +1,7 @@
 #include "driver.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -201,6 +202,8 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         settings.record_tests_per_pixel = !options.heatmap.empty();
         settings.need_image = !extra;   // frames past the requested ones are only shown
 
+        if (frame == 0)
+            if (const std::string why = renderer.unsupported(scene, settings); !why.empty()) throw InputError(why);
         const auto start = std::chrono::steady_clock::now();
         FrameResult result = renderer.render(scene, settings);
         result.stats.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -253,7 +256,9 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
 
 }  // namespace
 
-std::string one_printable_line(const std::string& text) {
+std::string one_printable_line(const std::string& message) {
+    std::string text = message;
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
     std::string out;
     for (const char c : text) {
         const auto u = static_cast<unsigned char>(c);

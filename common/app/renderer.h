@@ -64,6 +64,9 @@ public:
     virtual std::string renderer_name() const = 0;
     // Renders one frame of a flattened scene.
     virtual FrameResult render(const Scene& scene, const RenderSettings& settings) = 0;
+    // What this stage cannot do for this scene and these settings, said before anything renders (the driver then
+    // exits 2 with this line); empty when it can.
+    virtual std::string unsupported(const Scene& /*scene*/, const RenderSettings& /*settings*/) const { return {}; }
     // An interactive window that stays open after the requested frames: the driver keeps rendering (animated
     // scenes loop) until this turns false (the user closed the window).
     virtual bool interactive() const { return false; }

@@ -100,7 +100,14 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     const auto start = std::chrono::steady_clock::now();
     // In a window the viewer may render another camera, a paused frame, other effects or depth (viewer.h).
     const Scene& scene = viewer_ ? viewer_->scene_for_frame(requested_scene) : requested_scene;
-    const RenderSettings settings = viewer_ ? viewer_->settings_for_frame(requested_settings) : requested_settings;
+    RenderSettings settings = viewer_ ? viewer_->settings_for_frame(requested_settings) : requested_settings;
+    if (viewer_ && settings.record_tests_per_pixel && !requested_settings.record_tests_per_pixel) {
+        // The H key asked for a heatmap this stage cannot count for this scene: say why, show the image.
+        if (const std::string why = unsupported(scene, settings); !why.empty()) {
+            viewer_->heatmap_unavailable(why);
+            settings.record_tests_per_pixel = false;
+        }
+    }
     if (context_.valid()) context_.make_current();
     if (!shared_) shared_ = std::make_unique<Shared>(traversal_);
     Shared& s = *shared_;

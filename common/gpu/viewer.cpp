@@ -211,6 +211,11 @@ bool Viewer::show(GpuContext& context, WindowPresenter& presenter, const Wavefro
     return open && !context.should_close();
 }
 
+void Viewer::heatmap_unavailable(const std::string& why) {
+    heatmap_ = false;
+    say("no heatmap: " + why);
+}
+
 bool Viewer::wait_for_change(GpuContext& context, const Scene& scene) {
     // A still, refined view waits for input; a reduced one until it settles (then the frame refines it).
     const bool animating = scene.animated && !paused_;

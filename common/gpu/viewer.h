@@ -56,6 +56,9 @@ public:
     // refines it). False when the user closed the window meanwhile (nothing to render).
     bool wait_for_change(GpuContext& context, const Scene& scene);
 
+    // The stage cannot count tests per pixel for this scene (Renderer::unsupported): the H key's heatmap goes off.
+    void heatmap_unavailable(const std::string& why);
+
     // "N frames while moving (median X ms at WxH), M at full resolution (median Y ms at WxH)": what a user (and
     // scripts/viewer-bench) reads off a session.
     std::string summary() const;
