@@ -191,6 +191,9 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         scene.environment = environment;
         if (dropped > 0 && frame == 0 && !options.render.quiet)
             std::cerr << "warning: dropped " << dropped << " triangle(s) with non-finite vertices\n";
+        if (frame == 0 && !options.render.quiet)
+            if (const std::string problem = working_range_problem(scene.bounds); !problem.empty())
+                std::cerr << stage << ": warning: " << problem << "\n";
         RenderSettings settings = options.render;
         try {
             settings.effects = resolve_effects(options.effects, scene);

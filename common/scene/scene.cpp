@@ -1,9 +1,8 @@
-// Flattening a SceneAsset into one frame: animation sampling, the node hierarchy, the triangle soup, the camera and
-// the lights in world space, and the documented defaults for assets without a camera or a light.
 #include "scene.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -201,6 +200,28 @@ glm::vec4 world_tangent(const glm::mat3& m, bool mirrors, const glm::vec4& t) {
 }
 
 }  // namespace
+
+std::string working_range_problem(const Bounds& bounds) {
+    if (bounds.empty()) return {};
+    double extent = 0.0, reach = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = double(bounds.hi[k]) - double(bounds.lo[k]);
+        extent += d * d;
+        reach = std::max({reach, std::fabs(double(bounds.lo[k])), std::fabs(double(bounds.hi[k]))});
+    }
+    extent = std::sqrt(extent);
+    char line[256];
+    if (extent > kMaxSceneExtent || reach > kMaxSceneExtent)
+        std::snprintf(line, sizeof line, "the scene reaches %.3g units from the origin and is %.3g across: beyond %.0e, "
+                      "float ray/triangle tests overflow and geometry goes missing (README, \"Working range\")",
+                      reach, extent, kMaxSceneExtent);
+    else if (extent < kMinSceneExtent)
+        std::snprintf(line, sizeof line, "the scene is %.3g units across: below %.0e, float ray/triangle tests "
+                      "underflow and geometry goes missing (README, \"Working range\")", extent, kMinSceneExtent);
+    else
+        return {};
+    return line;
+}
 
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles) {
     Scene scene;

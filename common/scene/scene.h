@@ -44,6 +44,15 @@ struct Bounds {
 // bounces and samples can never reach a float's 3.4e38. Clamped where the value is formed, so no pixel is infinite.
 constexpr float kMaxRadiance = 1e20f;
 
+// The working range of scene sizes (README, "Working range"): the ray/triangle tests multiply three coordinates
+// (a determinant, a triple product), so a scene 1e-13 units across underflows a float's 1e-38 and one 1e13 across
+// overflows its 3.4e38: geometry vanishes and the frame shows only the background (measured on builtin:whitted
+// scaled: fine from 1e-13 to 1e13, all background at 1e-16 and 1e14). Scenes from kMinSceneExtent to
+// kMaxSceneExtent across, with coordinates below kMaxSceneExtent, keep a margin of several orders on both sides.
+constexpr double kMinSceneExtent = 1e-10, kMaxSceneExtent = 1e10;
+// One line saying why a scene with these bounds is outside the working range, or "" when it is inside (or empty).
+std::string working_range_problem(const Bounds& bounds);
+
 // An 8-bit texture exactly as stored in the file: RGBA, sRGB-encoded for base colour. Sampling converts to linear.
 struct Texture {
     std::string name;

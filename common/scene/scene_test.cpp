@@ -402,5 +402,28 @@ TEST(DefaultLight, EmptyBoundsGiveAFiniteLight) {
     EXPECT_NEAR(c.yfov, glm::radians(45.0f), 1e-6f);
 }
 
+Bounds cube(float lo, float hi) {
+    Bounds b;
+    b.add(glm::vec3(lo));
+    b.add(glm::vec3(hi));
+    return b;
+}
+
+TEST(WorkingRange, ScenesFromATenBillionthToTenBillionUnitsAcrossPass) {
+    EXPECT_EQ(working_range_problem(cube(-1.0f, 1.0f)), "");
+    EXPECT_EQ(working_range_problem(cube(0.0f, 1e-10f)), "");
+    EXPECT_EQ(working_range_problem(cube(-1e9f, 1e9f)), "");
+    EXPECT_EQ(working_range_problem(Bounds{}), "");   // no triangles: nothing to say
+}
+
+TEST(WorkingRange, TinyHugeAndFarAwayScenesAreNamedWithTheirSize) {
+    EXPECT_NE(working_range_problem(cube(0.0f, 1e-16f)).find("1.73e-16 units across: below 1e-10"), std::string::npos);
+    EXPECT_NE(working_range_problem(cube(-1e15f, 1e15f)).find("beyond 1e+10"), std::string::npos);
+    // A small scene far from the origin: its coordinates are past the range though its size is not.
+    EXPECT_NE(working_range_problem(cube(1e12f, 1e12f + 1e6f)).find("from the origin"), std::string::npos);
+    // Extents whose squares overflow a float are measured in double, not as Inf.
+    EXPECT_EQ(working_range_problem(cube(-3e38f, 3e38f)).find("inf"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rt
