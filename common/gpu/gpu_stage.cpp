@@ -123,7 +123,16 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     }
     s.wavefront.begin_frame(s.scene, settings);   // compiles the passes when the variant changes
     build(scene, settings);
-    for (const glm::vec2& offset : pixel_sample_offsets(settings.spp)) render_sample(scene, settings, offset);
+    {
+        // Progress over every sample's 8x8 tiles, shown once the frame has taken a second (not in a window, whose
+        // title says what a frame costs; not with --quiet).
+        const long tiles = long((settings.width + 7) / 8) * long((settings.height + 7) / 8) * long(settings.spp);
+        Progress progress(app_ ? app_->get_name() : "gpu stage", tiles, !settings.quiet && !viewer_);
+        s.wavefront.progress = &progress;
+        for (const glm::vec2& offset : pixel_sample_offsets(settings.spp)) render_sample(scene, settings, offset);
+        s.wavefront.progress = nullptr;
+        progress.finish();
+    }
     s.wavefront.finish_frame(result);   // image, counters, and the hits and per-pixel tests when asked for
 
     // Stats every GPU stage reports.

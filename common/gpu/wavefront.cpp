@@ -249,8 +249,11 @@ void Wavefront::for_each_tile_batch(F&& run_batch) {
             if (*p) p->set("wf_pixel_first", pixel_first);
         const std::size_t first_tile = band * band_tile_rows_ * tiles_x;
         const std::size_t end_tile = std::min(first_tile + band_tile_rows_ * tiles_x, tiles_x * tiles_y);
-        for (std::size_t first = first_tile; first < end_tile; first += per_batch)
-            run_batch(first, std::min(per_batch, end_tile - first) * kTilePixels, pixel_first);
+        for (std::size_t first = first_tile; first < end_tile; first += per_batch) {
+            const std::size_t tiles = std::min(per_batch, end_tile - first);
+            run_batch(first, tiles * kTilePixels, pixel_first);
+            if (progress) progress->advance(long(tiles));
+        }
         resolve(band);
     }
     ++samples_;

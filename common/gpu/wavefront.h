@@ -42,6 +42,7 @@
 
 #include "../app/hit_record.h"
 #include "../app/image.h"
+#include "../app/progress.h"
 #include "../app/renderer.h"
 #include "bindings.h"
 #include "buffer.h"
@@ -162,6 +163,9 @@ public:
     std::size_t max_storage_bytes = 0;
     // When set, each pass is timed on it as "shade", "shadow", "trace", "resolve" or "camera_rays".
     GpuTimer* timer = nullptr;
+    // When set, advanced by the 8x8 tiles of each primary batch once its rays and all their descendants are done:
+    // a long frame shows a progress bar (common/app/progress.h) instead of looking hung.
+    Progress* progress = nullptr;
     // The limit this frame runs with, and how many hits or rays one batch holds.
     std::size_t storage_limit() const { return storage_limit_; }
     std::size_t batch_size() const { return batch_; }
