@@ -52,7 +52,9 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
                                                                T(x) + T(samples[i].x), T(y) + T(samples[i].y));
                               counters.rays[int(RayKind::Primary)]++;
                               const HitLog log{hits, std::uint32_t(i), pixel};
-                              sum += whitted.radiance(ray, 0, glm::vec3(1.0f), counters, hits ? &log : nullptr);
+                              // One bound for every stage: a sample saturates at 2^63, as the GPU's fixed-point sum.
+                              sum += glm::min(whitted.radiance(ray, 0, glm::vec3(1.0f), counters, hits ? &log : nullptr),
+                                              glm::vec3(kMaxSampleRadiance));
                           }
                           result.image.at(x, y) = sum / float(samples.size());
                           if (settings.record_tests_per_pixel)

@@ -17,6 +17,11 @@ constexpr float kAmbient = 0.03f;          // ambient light, as a fraction of th
 constexpr float kDefaultCutoff = 1e-3f;    // a path stops when its weight falls below this in every channel
 constexpr float kPi = 3.14159265358979f;
 // kMaxRadiance (scene.h) bounds the irradiance light_incidence returns and the emission surface_coefficients returns.
+// The radiance one sample of a pixel carries, summed over its ray tree, saturates at 2^63 (9.2e18) in every stage:
+// the GPU stages add it in 96-bit fixed point whose top bit is sticky (wavefront.glsl, WF_RADIANCE_MAX) and 01 clamps
+// each sample to the same value, so an absurdly bright scene gives the same image on the CPU and the GPU.
+constexpr float kMaxSampleRadiance = 9.2233720e18f;   // 2^63
+static_assert(kMaxSampleRadiance == 0x1p63f);
 
 // Mirror reflection of d about n (n unit length).
 template <class T> Vec3<T> reflect_dir(const Vec3<T>& d, const Vec3<T>& n) { return d - T(2) * glm::dot(d, n) * n; }

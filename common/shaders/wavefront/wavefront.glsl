@@ -137,7 +137,7 @@ bool wf_tile_pixel(uint slot, out ivec2 p) {
 // limb, sets it, and resolve.comp then gives the saturated value WF_RADIANCE_MAX, never a wrapped one. Negative and
 // NaN contributions add nothing (scenes have non-negative colours and lights); +Inf saturates. wf_radiance holds a
 // band of image rows starting at pixel wf_pixel_first (the whole image unless it would not fit one storage block).
-const float WF_RADIANCE_MAX = 9.2233720e18;   // 2^63
+const float WF_RADIANCE_MAX = 9.2233720e18;   // 2^63, kMaxSampleRadiance (common/trace/shading.h): 01 clamps there too
 void wf_add_fixed(uint base, float c) {
     if (!(c > 0.0)) return;   // also NaN
     if (c >= WF_RADIANCE_MAX) {
