@@ -23,7 +23,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 Viewer::~Viewer() {
-    if ((!moving_.ms.empty() || !full_.ms.empty())) say("viewer: " + summary());
+    if (!moving_.ms.empty() || !full_.ms.empty()) say("viewer: " + summary());
 }
 
 std::string Viewer::summary() const {
@@ -75,9 +75,9 @@ RenderSettings Viewer::settings_for_frame(const RenderSettings& requested) {
     settings.effects.refractions &= !off_.refractions;
     if (max_depth_ >= 0) settings.max_depth = max_depth_;
     if (heatmap_) settings.record_tests_per_pixel = true;
-    writes_frame_ = requested.need_image;   // the driver writes this frame: full resolution, as headless
+    const bool writes_frame = requested.need_image;   // the driver writes this frame: full resolution, as headless
     const double since_motion = std::chrono::duration<double>(Clock::now() - last_motion_).count();
-    reduced_ = !writes_frame_ && !save_next_ && since_motion < kSettleSeconds && reduction_ > 1;
+    reduced_ = !writes_frame && !save_next_ && since_motion < kSettleSeconds && reduction_ > 1;
     if (reduced_) {
         settings.width = std::max(1, (requested.width + reduction_ - 1) / reduction_);
         settings.height = std::max(1, (requested.height + reduction_ - 1) / reduction_);
@@ -93,10 +93,9 @@ void Viewer::choose_reduction(double frame_ms) {
     // comes from the full frame's time; later moving frames correct it by a factor of 2 either way.
     if (fixed_reduction_ > 0) return;
     if (!reduced_) {
-        full_ms_ = frame_ms;
         if (reduction_ == 0) {
             reduction_ = 1;
-            while (reduction_ < kMaxReduction && full_ms_ / double(reduction_ * reduction_) > kMovingTargetMs)
+            while (reduction_ < kMaxReduction && frame_ms / double(reduction_ * reduction_) > kMovingTargetMs)
                 reduction_ *= 2;
         }
         return;

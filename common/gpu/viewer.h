@@ -91,9 +91,7 @@ private:
     Clock::time_point last_motion_{};     // the last input that moved the camera
     bool dirty_ = true;                   // an input changed what the next frame shows
     bool reduced_ = false;                // the frame being rendered (then shown) is a reduced one
-    bool writes_frame_ = false;           // ... is one the run writes (never reduced)
     int reduction_ = 0;                   // r of the next moving frame (0: not chosen yet)
-    double full_ms_ = 0.0;                // the last full-resolution frame's time
     struct Tally {
         std::vector<double> ms;
         int width = 0, height = 0;
