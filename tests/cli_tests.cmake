@@ -121,7 +121,7 @@ function(rt_add_cli_tests stage)
     set_tests_properties(cli.${stage}.storage_limit.image_too_large PROPERTIES ENVIRONMENT RT_MAX_SSBO_BYTES=65536)
     set_tests_properties(cli.${stage}.storage_limit.bad_env PROPERTIES ENVIRONMENT RT_MAX_SSBO_BYTES=64k)
   endif()
-  foreach(mode closed_stdout concurrent_export interrupted static_frames help_lists_builtins)
+  foreach(mode closed_stdout concurrent_export interrupted static_frames help_lists_builtins unsupported_extensions)
     add_test(NAME cli.${stage}.${mode}
              COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
     set_tests_properties(cli.${stage}.${mode} PROPERTIES LABELS "cli;cli-${stage}")

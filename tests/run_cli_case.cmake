@@ -320,6 +320,28 @@ elseif(MODE STREQUAL "static_frames")
     message(FATAL_ERROR "expected a warning and exit 0, got ${rc}: ${err}")
   endif()
 
+elseif(MODE STREQUAL "unsupported_extensions")
+  # A file that uses extensions the renderer does not implement renders, with one warning line per extension naming
+  # the file (listed in extensionsUsed or not, used once or twice); --quiet silences them.
+  fresh_folder(dir unsupported_extensions)
+  set(file ${dir}/coated.gltf)
+  file(WRITE ${file} [=[{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_ior"], "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AAAAAAAAgD8AAIC/"}], "bufferViews": [{"buffer": 0, "byteLength": 36}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 1, -1]}], "materials": [{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1}, "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1]}, "KHR_materials_ior": {"ior": 1.4}}}, {"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.5}}}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}], "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}]=])
+  render(rc err --scene ${file} --width 16 --height 12 --out ${dir}/c.png)
+  # The lines hold semicolons, so they are searched for, not split into a CMake list.
+  set(tail "which this renderer does not implement; rendered without it\n")
+  string(FIND "${err}" "warning: ${file}: uses extension KHR_materials_clearcoat, ${tail}" clearcoat)
+  string(FIND "${err}" "warning: ${file}: uses extension KHR_materials_sheen, ${tail}" sheen)
+  string(REGEX MATCHALL "warning: " warnings "${err}")
+  list(LENGTH warnings count)
+  if(NOT rc EQUAL 0 OR clearcoat EQUAL -1 OR NOT sheen GREATER clearcoat OR NOT count EQUAL 2)
+    message(FATAL_ERROR "expected exit 0 and one warning for KHR_materials_clearcoat, then one for "
+                        "KHR_materials_sheen, nothing else; got ${rc}:\n${err}")
+  endif()
+  render(rc err --scene ${file} --width 16 --height 12 --out ${dir}/q.png --quiet)
+  if(NOT rc EQUAL 0 OR NOT err STREQUAL "")
+    message(FATAL_ERROR "expected exit 0 and nothing on stderr with --quiet, got ${rc}: ${err}")
+  endif()
+
 elseif(MODE STREQUAL "extreme_values_stay_finite")
   # The most extreme values a glTF file may carry and still be accepted (docs/shading.md, "Values from files"):
   # lights of 3e38 (just under the float maximum), one of them touching the floor, an emissive strength of 3e38, a

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <system_error>
 
 #include <sys/stat.h>
@@ -63,7 +64,12 @@ SceneAsset load_scene(const std::string& spec, bool quiet) {
     } catch (const std::filesystem::filesystem_error& e) {
         throw InputError("cannot read scene " + spec + ": " + e.code().message());
     }
-    if (!warnings.empty() && !quiet) std::cerr << "warning: " << warnings << "\n";
+    // One line per warning, each naming the file (--quiet silences them).
+    if (!quiet) {
+        std::istringstream lines(warnings);
+        for (std::string line; std::getline(lines, line);)
+            if (!line.empty()) std::cerr << "warning: " << spec << ": " << line << "\n";
+    }
     return asset;
 }
 

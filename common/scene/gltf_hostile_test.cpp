@@ -11,6 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -258,6 +261,35 @@ TEST_F(GltfHostile, RequiredExtensionTheLoaderSupportsLoads) {
     const SceneAsset asset = load_gltf(write(doc));
     ASSERT_EQ(asset.materials.size(), 1u);
     EXPECT_FLOAT_EQ(asset.materials[0].ior, 1.33f);
+}
+
+TEST_F(GltfHostile, EachUsedExtensionTheRendererLacksIsWarnedAboutOnceInNameOrder) {
+    json doc = triangle();
+    // Listed and used twice; used without being listed (on a material, a primitive and a node); listed and
+    // not used; and two the loader reads, which must not be warned about.
+    doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_clearcoat", "EXT_listed_only", "KHR_materials_ior"};
+    doc["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", json::object()},
+                                         {"KHR_materials_ior", {{"ior", 1.4}}}}}},
+                        {{"extensions", {{"KHR_materials_clearcoat", json::object()},
+                                         {"KHR_materials_sheen", json::object()}}}}};
+    doc["nodes"][0]["extensions"] = {{"EXT_mesh_gpu_instancing", json::object()},
+                                     {"KHR_lights_punctual", {{"light", 0}}}};
+    doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}}}}}}};
+    doc["meshes"][0]["primitives"][0]["material"] = 0;
+    doc["meshes"][0]["primitives"][0]["extensions"] = {{"EXT_on_a_primitive", json::object()}};
+    std::string warnings;
+    load_gltf(write(doc), &warnings);
+    std::vector<std::string> named;
+    std::istringstream lines(warnings);
+    for (std::string line; std::getline(lines, line);) {
+        const std::string prefix = "uses extension ";
+        if (!line.starts_with(prefix)) continue;
+        named.push_back(line.substr(prefix.size(), line.find(',') - prefix.size()));
+        EXPECT_TRUE(line.ends_with(", which this renderer does not implement; rendered without it")) << line;
+    }
+    EXPECT_EQ(named, (std::vector<std::string>{"EXT_listed_only", "EXT_mesh_gpu_instancing", "EXT_on_a_primitive",
+                                               "KHR_materials_clearcoat", "KHR_materials_sheen"}))
+        << warnings;
 }
 
 // ---------------------------------------------------------------------------------------------------------------

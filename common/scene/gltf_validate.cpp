@@ -1,7 +1,9 @@
 #include "gltf_validate.h"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -104,6 +106,33 @@ void validate_extensions(const json& root) {
     }
 }
 
+// Every extension name the file uses: extensionsUsed, and the keys of each "extensions" object anywhere in it (a
+// file may use one without listing it). The JSON's depth is already bounded (check_json_depth), so recursion is safe.
+void collect_extensions(const json& value, std::set<std::string>& names) {
+    if (value.is_object()) {
+        for (auto it = value.begin(); it != value.end(); ++it) {
+            if (it.key() == "extensions" && it.value().is_object())
+                for (auto e = it.value().begin(); e != it.value().end(); ++e) names.insert(e.key());
+            collect_extensions(it.value(), names);
+        }
+    } else if (value.is_array()) {
+        for (const json& v : value) collect_extensions(v, names);
+    }
+}
+
+std::vector<std::string> unsupported_extensions_used(const json& root) {
+    std::set<std::string> names;
+    if (root.contains("extensionsUsed") && root.at("extensionsUsed").is_array())
+        for (const json& name : root.at("extensionsUsed"))
+            if (name.is_string()) names.insert(name.get<std::string>());
+    collect_extensions(root, names);
+    const auto& supported = supported_extensions();
+    std::vector<std::string> out;
+    for (const std::string& n : names)
+        if (std::find(supported.begin(), supported.end(), n) == supported.end()) out.push_back(n);
+    return out;
+}
+
 void validate_nodes(const json& root) {
     const json& nodes = array_member(root, "nodes");
     for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -136,7 +165,7 @@ void validate_scenes(const json& root) {
 
 }  // namespace
 
-void validate_gltf_json(std::string_view text) {
+std::vector<std::string> validate_gltf_json(std::string_view text) {
     json root;
     try {
         root = json::parse(text.begin(), text.end());
@@ -151,6 +180,7 @@ void validate_gltf_json(std::string_view text) {
         validate_extensions(root);
         validate_scenes(root);
         validate_nodes(root);
+        return unsupported_extensions_used(root);
     } catch (const json::exception& e) {   // the checks above test types first; this is a safety net
         invalid(e.what());
     }

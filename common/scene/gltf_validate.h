@@ -24,7 +24,8 @@ std::string_view glb_json_chunk(const std::vector<unsigned char>& glb);
 const std::vector<std::string>& supported_extensions();
 
 // Strict structure checks on the parsed JSON (the top-level JSON must already be depth-checked): asset.version 2.x,
-// the scene index, extensionsRequired, and the JSON types and sizes of every node's members.
-void validate_gltf_json(std::string_view json);
+// the scene index, extensionsRequired, and the JSON types and sizes of every node's members. Returns the extensions
+// the file uses (extensionsUsed, or an "extensions" object anywhere) that the loader does not read, sorted by name.
+std::vector<std::string> validate_gltf_json(std::string_view json);
 
 }  // namespace rt::gltf_detail
