@@ -267,7 +267,10 @@ TEST_F(GltfHostile, EachUsedExtensionTheRendererLacksIsWarnedAboutOnceInNameOrde
     json doc = triangle();
     // Listed and used twice; used without being listed (on a material, a primitive and a node); listed and
     // not used; and two the loader reads, which must not be warned about.
-    doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_clearcoat", "EXT_listed_only", "KHR_materials_ior"};
+    // Metadata extensions (KHR_xmp_json_ld) change no image and are not warned about either.
+    doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_clearcoat", "EXT_listed_only", "KHR_materials_ior",
+                             "KHR_xmp_json_ld"};
+    doc["asset"]["extensions"] = {{"KHR_xmp_json_ld", {{"packet", 0}}}};
     doc["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", json::object()},
                                          {"KHR_materials_ior", {{"ior", 1.4}}}}}},
                         {{"extensions", {{"KHR_materials_clearcoat", json::object()},

@@ -126,10 +126,13 @@ std::vector<std::string> unsupported_extensions_used(const json& root) {
         for (const json& name : root.at("extensionsUsed"))
             if (name.is_string()) names.insert(name.get<std::string>());
     collect_extensions(root, names);
+    // Metadata (authorship, licences): nothing in them could change an image, so nothing is missing without them.
+    static const std::set<std::string> metadata = {"KHR_xmp", "KHR_xmp_json_ld"};
     const auto& supported = supported_extensions();
     std::vector<std::string> out;
     for (const std::string& n : names)
-        if (std::find(supported.begin(), supported.end(), n) == supported.end()) out.push_back(n);
+        if (std::find(supported.begin(), supported.end(), n) == supported.end() && !metadata.count(n))
+            out.push_back(n);
     return out;
 }
 
