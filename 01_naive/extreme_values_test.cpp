@@ -1,4 +1,4 @@
-// No NaN or Inf pixel for any scene the loader accepts (issue 7): scenes with the most extreme values glTF files may
+// No NaN or Inf pixel for any scene the loader accepts: scenes with the most extreme values glTF files may
 // carry (3e38 intensities and strengths, a light touching a surface, indices of refraction at both ends) go through
 // load_gltf and flatten, and stage 01's brute-force renderer (the reference every stage is compared with) renders
 // them small; every pixel must be finite. kMaxRadiance in light_incidence and surface_coefficients is what holds.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A GL context that cannot start is one error line and exit 1 on every backend, with nothing left behind (issue 21).
+"""A GL context that cannot start is one error line and exit 1 on every backend, with nothing left behind.
 
 Cases, for one GPU stage: GALLIUM_DRIVER=bogus (Mesa then crashes inside OSMesaCreateContextAttribs: the stage
 probes it in a child process) with --backend auto, egl and osmesa; and a missing libOSMesa (RT_OSMESA_LIBRARY names a

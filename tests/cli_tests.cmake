@@ -49,7 +49,7 @@ function(rt_add_cli_tests stage)
   set_tests_properties(cli.${stage}.export_surface_effects_renders_like_builtin PROPERTIES LABELS "cli;cli-${stage}")
   add_test(NAME cli.${stage}.frames_write_numbered_images
            COMMAND ${CMAKE_COMMAND} -DMODE=frames -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
-  # Hostile input, by class (issue 7). Each case: class.name|regex its one-line error must match|argument|...;
+  # Hostile input, by class. Each case: class.name|regex its one-line error must match|argument|...;
   # @DIR@ is the case's own folder of fixtures (file, link.png -> target.png, loop_a <-> loop_b, fifo.png, folder.png,
   # read_only.png, and, when named, scene.gltf with its hard link hard_link.json, or textured.gltf with its own
   # buffer.bin and texture.png), @LONG@ a 300-byte name. The case must exit 2 with that one line and leave the folder exactly as it was (run_cli_case.cmake, MODE refused).

@@ -1,4 +1,4 @@
-# Hostile conditions every stage gets (issue 21):
+# Hostile conditions every stage gets:
 #   writes.<stage>.full_disk       every output kind and format, written where the disk cannot take it (a 512-byte
 #                                  file-size limit for any user; a full tmpfs as root), exits 1 with one line naming
 #                                  the file and the cause, leaves the previous file untouched and no temporary behind

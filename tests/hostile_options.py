@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every option of a stage, fed hostile values, either runs or is refused in one line (issue 21).
+"""Every option of a stage, fed hostile values, either runs or is refused in one line.
 
 The options come from the stage's own --help (CLI11 prints every option it registered, with its type and bounds),
 so an option added later is tested without editing this file. With --own-only, options that 01_naive also has are

@@ -135,7 +135,7 @@ elseif(MODE STREQUAL "export")
   endif()
 
 elseif(MODE STREQUAL "export_surface")
-  # Issue 13's surface effects survive export: volume, normal texture, TANGENT and KHR_texture_transform.
+  # The surface effects survive export: volume, normal texture, TANGENT and KHR_texture_transform.
   foreach(scene absorption normal_map)
     file(REMOVE ${OUT_DIR}/${scene}.gltf)
     render(rc err --scene builtin:${scene} --export ${OUT_DIR}/${scene}.gltf --quiet)
@@ -177,7 +177,7 @@ elseif(MODE STREQUAL "frames")
     message(FATAL_ERROR "stats: frames = ${frames}")
   endif()
 elseif(MODE STREQUAL "refused")
-  # Hostile input (issue 7): the case runs in its own folder of fixtures, @DIR@ in ARGS. It must exit 2 with one line
+  # Hostile input: the case runs in its own folder of fixtures, @DIR@ in ARGS. It must exit 2 with one line
   # matching EXPECT, print no raw std::filesystem text and no 20-digit number, and leave the folder exactly as it was:
   # no temporary, no partial output, every input unchanged.
   set(dir ${OUT_DIR}/${NAME})

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every output of a stage, written where the disk cannot take it, fails as the developers' guide says (issue 21).
+"""Every output of a stage, written where the disk cannot take it, fails as the developers' guide says.
 
 For each output kind and format (--out .png .jpg .exr .hdr, --heatmap, --export .gltf .glb, --stats, --dump-hits,
 --frames 2 --out), on two kinds of failing file system:

@@ -78,7 +78,7 @@ void write_image(const std::string& path, const Image& image) {
 
 // The image is encoded into memory (OpenImageIO's IOVecOutput proxy; stb's callback in the portable build), then
 // written by write_whole_file, which checks every write: OpenImageIO's PNG writer does not report a short write, and
-// libjpeg's error handler would end the process (issue 21). So a full disk is one error line, never a truncated
+// libjpeg's error handler would end the process. So a full disk is one error line, never a truncated
 // image.
 void write_image_file(const std::string& file, const Image& image) {
     const std::string ext = lower_extension(file);

@@ -55,7 +55,7 @@ struct OsmesaContext final : GpuContext::Impl {
 
 // A broken Mesa (GALLIUM_DRIVER naming a driver that does not exist, a half-installed libgallium) crashes inside
 // OSMesaCreateContextAttribs instead of returning null. So the first context is made in a child process first: if
-// the child dies or hangs, the run fails with one line instead of a segfault (issue 21). It costs one extra context
+// the child dies or hangs, the run fails with one line instead of a segfault. It costs one extra context
 // creation (tens of milliseconds on llvmpipe), only when OSMesa is the backend.
 void probe_in_child(osmesa::CreateContextAttribsFn create, osmesa::MakeCurrentFn make_current, const int* attribs) {
     const pid_t child = fork();

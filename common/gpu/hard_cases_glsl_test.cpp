@@ -1,4 +1,4 @@
-// The hard cases of issue 4 for the GLSL twins (common/shaders/): the same cases as the CPU suite
+// The numerically hard cases for the GLSL twins (common/shaders/): the same cases as the CPU suite
 // (common/trace/hard_cases_test.cpp), on the same meshes and rays (common/trace/hard_cases.h), asserted on what the
 // GLSL routines compute in compute shaders (the GLSL test harness; llvmpipe in CI). glsl_twins_test.cpp checks that
 // GLSL and C++ agree on sample inputs; this file checks the properties themselves on the GPU side:

@@ -1,4 +1,4 @@
-// Built-in scenes for the surface effects of issue 13 (docs/shading.md, "Absorption", "Normal maps", "Texture
+// Built-in scenes for the surface effects (docs/shading.md, "Absorption", "Normal maps", "Texture
 // transform"): each one uses its effect where a golden image shows it.
 #pragma once
 

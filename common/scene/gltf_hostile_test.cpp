@@ -1,4 +1,4 @@
-// Hostile glTF input (issue 7), one test per class: crashes and hangs (deep hierarchies, deep JSON, URIs naming
+// Hostile glTF input, one test per class: crashes and hangs (deep hierarchies, deep JSON, URIs naming
 // things that are not files), the triangle budget, malformed glTF that tinygltf alone accepts, and values that do
 // not fit a float. Every refusal is a one-line SceneError naming the file.
 #include "gltf_io.h"

@@ -327,7 +327,7 @@ std::string gltf_file_bytes(const SceneAsset& asset, const std::string& path) {
         throw SceneError(prefix + one_line(e.reason));
     }
     // Into memory (buffers and images embedded), so the bytes reach the disk through write_whole_file, which reports
-    // a short write: tinygltf's own file writer does not (issue 21: "exported" with a third of the file written).
+    // a short write: tinygltf's own file writer does not (it once said "exported" with a third of the file written).
     std::ostringstream bytes;
     tinygltf::TinyGLTF gltf;
     bool ok = false;

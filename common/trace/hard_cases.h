@@ -1,4 +1,4 @@
-// Test support for the hard-case suites (issue 4): the meshes and rays that the CPU suite
+// Test support for the hard-case suites: the meshes and rays that the CPU suite
 // (common/trace/hard_cases_test.cpp) and its GLSL twin (common/gpu/hard_cases_glsl_test.cpp) share, so both run the
 // same cases:
 //   closed meshes       closed_sphere(), closed_cube() and their topology (shared vertices and edges by position)

@@ -1,4 +1,4 @@
-// The hard cases of the shared CPU routines (issue 4): each case is a test named after it.
+// The hard cases of the shared CPU routines: each case is a test named after it.
 //
 //   Watertight        rays aimed exactly at shared vertices and edges of closed meshes never slip through.
 //   SelfIntersection  spawned shadow, reflection and refraction rays never re-hit the surface they leave, at

@@ -1,4 +1,4 @@
-// The glTF loader + flatten fuzz target (issue 7). LLVMFuzzerTestOneInput has libFuzzer's signature, so the same
+// The glTF loader + flatten fuzz target. LLVMFuzzerTestOneInput has libFuzzer's signature, so the same
 // file also links with -fsanitize=fuzzer where clang is available; fuzz_gltf_driver.cpp is the standalone driver.
 #pragma once
 
