@@ -1,5 +1,5 @@
 // The stats every GPU stage reports, through the shared base (common/gpu/gpu_stage.h), on stage 02 and on a stage
-// that traces its primary rays as 03-05 will: rasterized vs traced rays, GPU-timed phases, shader compilation
+// that traces its primary rays as 03 can: rasterized vs traced rays, GPU-timed phases, shader compilation
 // reported apart (and only when something was compiled).
 #include <gtest/gtest.h>
 

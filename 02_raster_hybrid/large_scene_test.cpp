@@ -31,7 +31,7 @@ RenderSettings small_settings(const Scene& scene, int width, int height) {
     return settings;
 }
 
-// Stage 02's traversal tracing the camera rays too (closest hits through the slices), as stages 03-05 may.
+// Stage 02's traversal tracing the camera rays too (closest hits through the slices), as 03's --primary trace does.
 class TracedBruteForce : public gpu::GpuStage {
 public:
     TracedBruteForce() : GpuStage({}), brute_force_([this] { return gpu_scene().triangle_count(); }) {

@@ -1,6 +1,6 @@
-// The wavefront pipeline's other entry, used by stages 03-05: primary rays traced (camera_rays.comp + the trace
-// pass) instead of rasterized. With stage 02's brute-force traversal it must give stage 01's image (the golden
-// tolerance: 0.016 on 8-bit sRGB, at most 1% of the pixels) and exactly stage 01's ray and test counts.
+// The wavefront pipeline's other entry, used by stage 03 with --primary trace: primary rays traced (camera_rays.comp +
+// the trace pass) instead of rasterized. With stage 02's brute-force traversal it must give stage 01's image (the
+// golden tolerance: 0.016 on 8-bit sRGB, at most 1% of the pixels) and exactly stage 01's ray and test counts.
 #include <gtest/gtest.h>
 
 #include <cmath>

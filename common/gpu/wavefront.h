@@ -6,8 +6,9 @@
 //        ^              └───> reflection/refraction rays ──> trace pass (closest hit) ──┐
 //        └──────────────────────────────── hits of the next bounce <───────────────────┘
 //
-// The stage supplies two things: the primary hits (stage 02 rasterizes them; stages 03-05 trace camera rays with
-// trace_camera_sample) and the traversal: a GLSL file that defines
+// The stage supplies two things: the primary hits (every GPU stage rasterizes them by default, as stage 02 does;
+// stage 03 with --primary trace traces camera rays with trace_camera_sample) and the traversal: a GLSL file that
+// defines
 //
 //   bool trace_closest(Ray ray, out Hit hit);   // the nearest hit with 0 < t < ray.tmax (hit.triangle = -1 if none)
 //   bool trace_any(Ray ray);                    // whether anything is hit with 0 < t < ray.tmax (may stop early)
@@ -121,8 +122,8 @@ public:
     // trace_camera_sample after the batch's hits.
     void shade_sample(const Program& primary_pass);
 
-    // One sample with traced primary rays (stages 03-05): camera rays through `offset` in each pixel, traced with
-    // the traversal, then shaded as above.
+    // One sample with traced primary rays (stage 03 with --primary trace): camera rays through `offset` in each
+    // pixel, traced with the traversal, then shaded as above.
     void trace_camera_sample(glm::vec2 offset);
 
     // End of the frame: the image (the mean over the samples; empty when settings.need_image is false, the image

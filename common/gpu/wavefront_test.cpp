@@ -337,7 +337,7 @@ TEST(StorageLimit, TinyLimitGivesIdenticalImageCountsAndHits) {
     EXPECT_GT(dispatches(tiny, "shade"), 2 * dispatches(unlimited, "shade"));
 }
 
-// Stages 03-05 trace their primary rays: camera rays in tile order, batches of tiles under a tiny limit.
+// Traced primary rays (stage 03 with --primary trace): camera rays in tile order, batches of tiles under a tiny limit.
 FrameResult render_traced(const Scene& scene, const RenderSettings& settings, std::size_t max_storage_bytes) {
     gpu::test_context();
     gpu::GpuScene gpu_scene;

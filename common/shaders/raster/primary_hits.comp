@@ -128,12 +128,12 @@ void main() {
     // END EXERCISE
     wf_flush_tests(pixel);
 #ifdef ENABLE_CUTOUTS
-    // Cut-outs (docs/gpu.md, "Cut-outs in stage 02"): the G-buffer knows nothing of opacity, and the raster's uv is
-    // not the ray's, so it cannot say whether the ray passes through a MASK or BLEND surface. The closest candidate
-    // above ignores opacity; when it is such a surface, the pixel's camera ray is deferred: written to its ray slot
-    // and traced by the stage's traversal (which applies the opacity test, opacity.glsl) after the rasterized hits
-    // are shaded, as stages 03-05 trace theirs. A pixel whose candidate is opaque keeps it: no hit in front of it
-    // was missed (a transparent hit can only remove hits, never add one), so it is exact as before.
+    // Cut-outs (docs/gpu.md, "Cut-outs in stage 02"): the G-buffer knows nothing of opacity, and the raster's uv is not
+    // the ray's, so it cannot say whether the ray passes through a MASK or BLEND surface. The closest candidate above
+    // ignores opacity; when it is such a surface, the pixel's camera ray is deferred: written to its ray slot and
+    // traced by the stage's traversal (which applies the opacity test, opacity.glsl) after the rasterized hits are
+    // shaded, as stage 03 traces all of them with --primary trace. A pixel whose candidate is opaque keeps it: no hit
+    // in front of it was missed (a transparent hit can only remove hits, never add one), so it is exact as before.
     WavefrontRay deferred = e.ray;
     deferred.pixel = WF_NO_PIXEL;
     if (e.triangle >= 0 && rt_materials[rt_material_ids[uint(e.triangle)]].alpha_mode != RT_ALPHA_OPAQUE) {

@@ -1,6 +1,6 @@
 #version 450 core
-// Primary rays for the stages that trace them (03-05): one per pixel through the sample position wf_sample_offset
-// inside it, exactly as rt::camera_ray (camera.glsl is its twin). Slot s of the batch is the pixel
+// Primary rays for a stage that traces them (03 with --primary trace): one per pixel through the sample position
+// wf_sample_offset inside it, exactly as rt::camera_ray (camera.glsl is its twin). Slot s of the batch is the pixel
 // wf_tile_pixel(wf_tile_first * 64 + s) (8x8 tiles, Morton order inside), so compaction gives the queue that order.
 #include "wavefront.glsl"
 #include "scene.glsl"
