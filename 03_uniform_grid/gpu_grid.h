@@ -1,5 +1,5 @@
 // Stage 03's uniform grid, built on the GPU from scratch every frame (Kalojanov & Slusallek 2009, "A Parallel
-// Algorithm for Construction of Uniform Grids"): the sort-based build of the grid data the seeds describe, a list of
+// Algorithm for Construction of Uniform Grids"): the sort-based build of the grid data the paper describes, a list of
 // (cell, triangle) pairs sorted by cell plus a start and size per cell.
 //
 //   1. grid_chunks.comp  one thread per triangle: how many chunks of 512 cells its bounding box has; a scan of them

@@ -1,5 +1,5 @@
 // The shading model every stage implements (docs/shading.md is the contract; common/shaders/shading.glsl is the
-// GLSL twin, kept equal by tests/unit/test_glsl_twins.cpp). Everything here is linear RGB.
+// GLSL twin, kept equal by common/gpu/glsl_twins_test.cpp). Everything here is linear RGB.
 #pragma once
 
 #include <algorithm>
