@@ -1,6 +1,6 @@
 // Ray/triangle intersection: two methods, selected with --intersect.
 //
-//  moller      Moller & Trumbore (1997), "Fast, minimum storage ray-triangle intersection", as the course papers teach it.
+//  moller      Moller & Trumbore (1997), "Fast, minimum storage ray-triangle intersection", as the papers teach it.
 //              Fast, but an edge shared by two triangles is tested twice with different rounding, so a ray aimed at
 //              the edge (or a shared vertex) can miss both triangles.
 //  watertight  Woop, Benthin & Wald (2013), "Watertight ray/triangle intersection", JCGT 2(1). The ray is sheared
