@@ -271,6 +271,8 @@ TEST_F(GltfHostile, EachUsedExtensionTheRendererLacksIsWarnedAboutOnceInNameOrde
     doc["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_clearcoat", "EXT_listed_only", "KHR_materials_ior",
                              "KHR_xmp_json_ld"};
     doc["asset"]["extensions"] = {{"KHR_xmp_json_ld", {{"packet", 0}}}};
+    // An application's own data under "extras" is not glTF: an "extensions" key in it names no extension.
+    doc["nodes"][0]["extras"] = {{"extensions", {{"EXT_inside_extras", json::object()}}}};
     doc["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", json::object()},
                                          {"KHR_materials_ior", {{"ior", 1.4}}}}}},
                         {{"extensions", {{"KHR_materials_clearcoat", json::object()},

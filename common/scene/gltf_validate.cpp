@@ -96,21 +96,26 @@ void validate_asset(const json& root) {
     if (!version.starts_with("2.")) invalid("asset.version is '" + version + "'; only glTF 2.x is supported");
 }
 
+bool is_supported(const std::string& extension) {
+    const auto& supported = supported_extensions();
+    return std::find(supported.begin(), supported.end(), extension) != supported.end();
+}
+
 void validate_extensions(const json& root) {
     for (const json& name : array_member(root, "extensionsRequired")) {
         if (!name.is_string()) invalid("extensionsRequired must list names");
-        const auto& supported = supported_extensions();
         const std::string n = name.get<std::string>();
-        if (std::find(supported.begin(), supported.end(), n) == supported.end())
-            invalid("requires extension " + n + ", which this loader does not support");
+        if (!is_supported(n)) invalid("requires extension " + n + ", which this loader does not support");
     }
 }
 
 // Every extension name the file uses: extensionsUsed, and the keys of each "extensions" object anywhere in it (a
-// file may use one without listing it). The JSON's depth is already bounded (check_json_depth), so recursion is safe.
+// file may use one without listing it); "extras" hold an application's own data, not glTF, and are skipped. The JSON's
+// depth is already bounded (check_json_depth), so recursion is safe.
 void collect_extensions(const json& value, std::set<std::string>& names) {
     if (value.is_object()) {
         for (auto it = value.begin(); it != value.end(); ++it) {
+            if (it.key() == "extras") continue;
             if (it.key() == "extensions" && it.value().is_object())
                 for (auto e = it.value().begin(); e != it.value().end(); ++e) names.insert(e.key());
             collect_extensions(it.value(), names);
@@ -128,11 +133,9 @@ std::vector<std::string> unsupported_extensions_used(const json& root) {
     collect_extensions(root, names);
     // Metadata (authorship, licences): nothing in them could change an image, so nothing is missing without them.
     static const std::set<std::string> metadata = {"KHR_xmp", "KHR_xmp_json_ld"};
-    const auto& supported = supported_extensions();
     std::vector<std::string> out;
     for (const std::string& n : names)
-        if (std::find(supported.begin(), supported.end(), n) == supported.end() && !metadata.count(n))
-            out.push_back(n);
+        if (!is_supported(n) && !metadata.count(n)) out.push_back(n);
     return out;
 }
 
