@@ -126,6 +126,10 @@ function(rt_add_cli_tests stage)
              COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
     set_tests_properties(cli.${stage}.${mode} PROPERTIES LABELS "cli;cli-${stage}")
   endforeach()
+  add_test(NAME cli.${stage}.defaults_for_gltf
+           COMMAND ${CMAKE_COMMAND} -DMODE=defaults_for_gltf -DEXE=${exe} -DOUT_DIR=${out}
+                   -DDATA=${PROJECT_SOURCE_DIR}/tests/data -P ${script})
+  set_tests_properties(cli.${stage}.defaults_for_gltf PROPERTIES LABELS "cli;cli-${stage}")
   # The environment costs nothing unused, and a map adds no ray (run_environment_case.cmake).
   add_test(NAME cli.${stage}.environment_costs_nothing_unused
            COMMAND ${CMAKE_COMMAND} -DEXE=${exe} -DOUT_DIR=${out}/environment_costs -DCOMPARE=$<TARGET_FILE:image_compare>

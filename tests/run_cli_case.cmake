@@ -342,6 +342,38 @@ elseif(MODE STREQUAL "unsupported_extensions")
     message(FATAL_ERROR "expected exit 0 and nothing on stderr with --quiet, got ${rc}: ${err}")
   endif()
 
+elseif(MODE STREQUAL "defaults_for_gltf")
+  # docs/shading.md "Defaults": what a glTF file lacks is added and said in the stats. The closed room (camera
+  # inside, no light) gets the headlight, the mirror sphere (no camera, no light) the key light; both the default
+  # world and the hemisphere ambient; --background black and --ambient replace them. DATA is tests/data.
+  fresh_folder(dir defaults_for_gltf)
+  function(defaults_of scene name)   # renders, then sets <name>_light, _headlight, _world, _camera and _ambient
+    render(rc err --scene ${DATA}/${scene}.gltf --width 32 --height 24 --quiet --out ${dir}/${name}.png
+           --stats ${dir}/${name}.json ${ARGN})
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "${scene} ${ARGN}: render failed (${rc}): ${err}")
+    endif()
+    file(READ ${dir}/${name}.json json)
+    foreach(key camera light headlight world)
+      json_get(v "${json}" defaults ${key})
+      set(${name}_${key} ${v} PARENT_SCOPE)
+    endforeach()
+    json_get(v "${json}" ambient)
+    set(${name}_ambient ${v} PARENT_SCOPE)
+  endfunction()
+  defaults_of(closed_room room)
+  defaults_of(mirror_sphere sphere)
+  defaults_of(closed_room black --background black --ambient constant)
+  defaults_of(mirror_sphere none --ambient none --background 0.1,0.2,0.3)
+  string(CONCAT got "room: ${room_camera} ${room_light} ${room_headlight} ${room_world} ${room_ambient}; "
+          "sphere: ${sphere_camera} ${sphere_light} ${sphere_headlight} ${sphere_world} ${sphere_ambient}; "
+          "black: ${black_world} ${black_ambient}; none: ${none_world} ${none_ambient}")
+  set(want "room: OFF ON ON ON hemisphere; sphere: ON ON OFF ON hemisphere; black: OFF constant; none: OFF none")
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "defaults (camera light headlight world ambient):\n  got  ${got}\n  want ${want}")
+  endif()
+  expect_no_temporaries(${dir})
+
 elseif(MODE STREQUAL "extreme_values_stay_finite")
   # The most extreme values a glTF file may carry and still be accepted (docs/shading.md, "Values from files"):
   # lights of 3e38 (just under the float maximum), one of them touching the floor, an emissive strength of 3e38, a

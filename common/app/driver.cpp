@@ -19,6 +19,7 @@
 #include "../scene/whole_file.h"
 #include "../scene/builtin_scenes.h"
 #include "../scene/gltf_io.h"
+#include "../trace/environment.h"
 #include "atomic_file.h"
 #include "environment_file.h"
 #include "heatmap.h"
@@ -136,7 +137,11 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
                          std::to_string(asset.cameras.size()) + " camera(s)");
     // What rays leaving the scene see: --background replaces the scene's colour, --environment (read and checked
     // completely now, before any output is touched) replaces it by a map shared by every frame.
-    if (options.background) asset.background = *options.background;
+    if (options.background) {
+        asset.background = *options.background;
+        asset.has_world = true;
+    }
+    if (options.ambient) asset.ambient = *options.ambient;
     std::shared_ptr<const Environment> environment;
     if (!options.environment.empty()) {
         environment = load_environment(options.environment, options.environment_rotation, options.environment_intensity);
@@ -195,6 +200,11 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
             throw InputError(std::string("--camera: ") + e.what());
         }
         scene.environment = environment;
+        // A file that says nothing of its world (most glTF files) sees the default world (docs/shading.md).
+        if (!environment && !asset.has_world) {
+            scene.environment = default_world();
+            scene.default_world = true;
+        }
         if (dropped > 0 && frame == 0 && !options.render.quiet)
             std::cerr << "warning: dropped " << dropped << " triangle(s) with non-finite vertices\n";
         if (frame == 0 && !options.render.quiet)
@@ -244,7 +254,9 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     if (!options.stats.empty()) {
         nlohmann::json extra = {{"triangles", scene.triangle_count()},
                                 {"lights", scene.lights.size()},
-                                {"defaults", {{"camera", scene.default_camera}, {"light", scene.default_light}}},
+                                {"defaults", {{"camera", scene.default_camera}, {"light", scene.default_light},
+                                              {"headlight", scene.default_headlight}, {"world", scene.default_world}}},
+                                {"ambient", ambient_name(scene.ambient)},
                                 {"dropped_triangles", dropped},
                                 {"settings", settings_json(options.render)},
                                 {"threads", resolve_thread_count(options.render.threads)},

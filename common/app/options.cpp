@@ -102,6 +102,7 @@ CLI::Validator whole_number_of(const std::vector<long long>& allowed) {
 
 glm::vec3 parse_background(const std::string& text) {
     glm::vec3 c(0.0f);
+    if (text == "black") return c;   // what glTF files got before the default world
     std::size_t start = 0;
     for (int k = 0; k < 3; ++k) {
         const std::size_t comma = text.find(',', start);
@@ -189,7 +190,8 @@ void add_shared_options(CLI::App& app, Options& o) {
     // Rays that leave the scene (docs/shading.md, "The environment"): background, not lighting.
     app.add_option_function<std::string>(
            "--background", [&o](const std::string& text) { o.background = parse_background(text); },
-           "R,G,B: linear radiance of rays that leave the scene, instead of the scene's (glTF files: black)")
+           "R,G,B or black: linear radiance of rays that leave the scene, instead of the scene's (glTF files: the "
+           "default world, a grey studio)")
         ->check(CLI::Validator(
             [](std::string& text) {
                 try {
@@ -200,6 +202,15 @@ void add_shared_options(CLI::App& app, Options& o) {
                 return std::string();
             },
             "R,G,B"));
+    app.add_option_function<std::string>(
+           "--ambient",
+           [&o](const std::string& word) {
+               o.ambient = word == "none" ? AmbientModel::None
+                                          : (word == "hemisphere" ? AmbientModel::Hemisphere : AmbientModel::Constant);
+           },
+           "Ambient light (no rays; docs/shading.md, \"Ambient\"): constant, hemisphere (brighter from above) or none; "
+           "default: the scene's (built-in scenes constant, glTF files hemisphere)")
+        ->transform(CLI::IsMember({"none", "constant", "hemisphere"}, CLI::ignore_case));
     CLI::Option* environment =
         app.add_option("--environment", o.environment,
                        "Equirectangular .hdr/.exr map that rays leaving the scene see (not a light); replaces the background");

@@ -35,6 +35,7 @@ struct Options {
     // What rays leaving the scene see (docs/shading.md, "The environment"): --background replaces the scene's
     // colour; --environment FILE (.hdr/.exr, equirectangular) replaces it by a map, turned and scaled by these.
     std::optional<glm::vec3> background;
+    std::optional<AmbientModel> ambient;   // --ambient; unset: the scene's
     std::string environment;
     float environment_rotation = 0.0f;    // degrees about +Y
     float environment_intensity = 1.0f;
@@ -71,7 +72,7 @@ CLI::Validator whole_number_in(long long lo, long long hi);
 // An integer option with a few allowed values: whole_number_in's checks, then membership ("5 is not one of 4, 8 or 16").
 CLI::Validator whole_number_of(const std::vector<long long>& allowed);
 
-// --background's value: "R,G,B", three finite numbers in [0, kMaxRadiance] (linear radiance). Throws
+// --background's value: "black" or "R,G,B", three finite numbers in [0, kMaxRadiance] (linear radiance). Throws
 // std::invalid_argument with one line otherwise.
 glm::vec3 parse_background(const std::string& text);
 

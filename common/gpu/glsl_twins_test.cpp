@@ -297,6 +297,36 @@ void test_main() {
     EXPECT_GT(tir, 100u);   // total internal reflection was exercised
 }
 
+// ambient_light in each of its three compiled variants against the C++ switch, to the bit, over normals facing every
+// way (straight up and down included) and diffuse colours from 0 to 1.
+TEST(GlslTwins, AmbientLightOfEveryModel) {
+    test_context();
+    const std::pair<AmbientModel, ShaderDefines> models[] = {{AmbientModel::Constant, {}},
+                                                             {AmbientModel::Hemisphere, {{"RT_AMBIENT_HEMISPHERE", "1"}}},
+                                                             {AmbientModel::None, {{"RT_AMBIENT_NONE", "1"}}}};
+    for (const auto& [model, defines] : models) {
+        GlslTestHarness h(std::string("ambient_") + ambient_name(model) + "_test", R"(
+#include "shading.glsl"
+void test_main() { out_vec3(0, ambient_light(in_vec3(0), in_vec3(3))); }
+)", defines);
+        Rng rng;
+        Words in;
+        std::vector<float> expected;
+        std::size_t count = 0;
+        for (int i = 0; i < 2000; ++i) {
+            glm::vec3 n = rng.unit();
+            if (i == 0) n = glm::vec3(0, 1, 0);
+            if (i == 1) n = glm::vec3(0, -1, 0);
+            const glm::vec3 diffuse = i == 2 ? glm::vec3(0.0f) : rng.vec(0, 1);
+            in << diffuse << n;
+            const glm::vec3 a = ambient_light(model, diffuse, n);
+            expected.insert(expected.end(), {a.x, a.y, a.z});
+            ++count;
+        }
+        expect_floats(expected, h.run(in.words, count, 6, 3), 0, std::string("ambient ") + ambient_name(model), 3);
+    }
+}
+
 TEST(GlslTwins, SurfaceCoefficientsLightsAndWhittedWeights) {
     test_context();
     GlslTestHarness h("shading_test", R"(

@@ -89,6 +89,7 @@ void GpuScene::upload(const Scene& scene) {
     const std::size_t vertices = scene.positions.size();
     if (scene.normals.size() != vertices || scene.uvs.size() != vertices || vertices != scene.triangle_count() * 3)
         throw std::invalid_argument("GpuScene::upload: positions/normals/uvs/material_ids sizes disagree");
+    ambient_ = scene.ambient;
     positions_.assign(convert<glm::vec4>(scene.positions, [](const glm::vec3& p) { return glm::vec4(p, 1.0f); }));
     // With normal maps (docs/shading.md), the tangents follow the normals in the same buffer: vertex i's tangent is
     // entry 3 * triangles + i (no extra binding, and no bytes at all for scenes without normal maps).

@@ -85,6 +85,8 @@ public:
     // Whether the scene has an --environment map (then the passes are compiled with RT_ENVIRONMENT).
     bool has_environment() const { return environment_.present(); }
     const EnvironmentTexture& environment() const { return environment_; }
+    // The scene's ambient model (the passes are compiled with RT_AMBIENT_NONE or RT_AMBIENT_HEMISPHERE for it).
+    AmbientModel ambient() const { return ambient_; }
     const GpuSceneBlock& block() const { return block_; }
     // Bytes of GPU memory the scene takes.
     std::size_t bytes() const;
@@ -105,6 +107,7 @@ private:
     Buffer positions_, normals_, uvs_, material_ids_, materials_, lights_, textures_, ubo_;
     EnvironmentTexture environment_;   // uploaded only when the scene's map changes
     GpuSceneBlock block_{};
+    AmbientModel ambient_ = AmbientModel::Constant;
 };
 
 }  // namespace rt::gpu

@@ -112,6 +112,9 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     if (count_tests || settings.record_tests_per_pixel) defines.insert_or_assign("COUNT_TESTS", std::string("1"));
     if (settings.record_tests_per_pixel) defines.insert_or_assign("RECORD_TESTS_PER_PIXEL", std::string("1"));
     if (scene.has_environment()) defines.insert_or_assign("RT_ENVIRONMENT", std::string("1"));   // environment.glsl
+    if (scene.ambient() == AmbientModel::None) defines.insert_or_assign("RT_AMBIENT_NONE", std::string("1"));
+    if (scene.ambient() == AmbientModel::Hemisphere)
+        defines.insert_or_assign("RT_AMBIENT_HEMISPHERE", std::string("1"));   // shading.glsl, ambient_light
     for (const auto& [k, v] : traversal_.defines) defines.insert_or_assign(k, v);
     std::string key;
     for (const auto& [k, v] : defines) key.append(k).append("=").append(v).append(";");

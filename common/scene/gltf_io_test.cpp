@@ -155,6 +155,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.default_camera, b.default_camera);
     EXPECT_EQ(a.default_light, b.default_light);
     EXPECT_EQ(a.background, b.background);
+    EXPECT_EQ(a.ambient, b.ambient);
     ASSERT_EQ(a.textures.size(), b.textures.size());
     for (std::size_t i = 0; i < a.textures.size(); ++i) {
         EXPECT_EQ(a.textures[i].width, b.textures[i].width);
@@ -360,6 +361,40 @@ TEST(GltfLoad, HandWrittenTriangleLoads) {
     EXPECT_EQ(s.normals[0], glm::vec3(0, 0, 1));
     EXPECT_TRUE(s.default_camera);
     EXPECT_TRUE(s.default_light);
+    // A glTF file says nothing of its world or of ambient light: the default world and the hemisphere ambient.
+    EXPECT_FALSE(a.has_world);
+    EXPECT_EQ(a.ambient, AmbientModel::Hemisphere);
+}
+
+// Our extras survive a round trip: a scene with a background keeps it and its ambient model; one without a world
+// (a glTF file read and written again) is written without rt_background, so it gets the default world again.
+TEST(GltfRoundTrip, WorldAndAmbientSurviveAndAFileWithoutAWorldStaysWithout) {
+    TempDir dir;
+    write_text(dir.file("t.gltf"), triangle_gltf({0, 1, 2}));
+    SceneAsset a = load_gltf(dir.file("t.gltf"));
+    save_gltf(a, dir.file("again.gltf"));
+    const SceneAsset b = load_gltf(dir.file("again.gltf"));
+    EXPECT_FALSE(b.has_world);
+    EXPECT_EQ(b.ambient, AmbientModel::Hemisphere);
+    for (AmbientModel model : {AmbientModel::None, AmbientModel::Constant, AmbientModel::Hemisphere}) {
+        a.has_world = true;
+        a.background = glm::vec3(0.25f, 0.5f, 1.0f);
+        a.ambient = model;
+        save_gltf(a, dir.file("world.gltf"));
+        const SceneAsset c = load_gltf(dir.file("world.gltf"));
+        EXPECT_TRUE(c.has_world);
+        EXPECT_EQ(c.background, a.background);
+        EXPECT_EQ(c.ambient, model);
+    }
+}
+
+TEST(GltfLoad, UnknownAmbientExtraIsRefusedInOneLine) {
+    TempDir dir;
+    std::string text = triangle_gltf({0, 1, 2});
+    const std::string scenes = R"("scenes":[{"nodes":[0]}])";
+    text.replace(text.find(scenes), scenes.size(), R"("scenes":[{"nodes":[0],"extras":{"rt_ambient":"shiny"}}])");
+    write_text(dir.file("a.gltf"), text);
+    expect_one_line_scene_error(dir.file("a.gltf"), "rt_ambient is not one of none, constant or hemisphere");
 }
 
 TEST(GltfLoad, MissingFileThrowsOneLineSceneError) {

@@ -603,6 +603,11 @@ struct Loader {
                 if (++parents[std::size_t(child)] > 1)
                     invalid("node " + std::to_string(child) + " has more than one parent");
 
+        // A glTF file says nothing of what rays leaving it see, nor of ambient light: unless it carries our own
+        // extras (written by save_gltf), it gets the default world and the hemisphere ambient (docs/shading.md,
+        // "Defaults"), as a glTF viewer shows a model in a neutral studio.
+        out.has_world = false;
+        out.ambient = AmbientModel::Hemisphere;
         if (!model.scenes.empty()) {
             int s = model.defaultScene;
             if (s < 0 || std::size_t(s) >= model.scenes.size()) s = 0;
@@ -616,8 +621,21 @@ struct Loader {
             }
             // Our own extra: the background colour (written by save_gltf).
             if (const tinygltf::Value* bg = member(scene.extras, "rt_background"); bg && bg->IsArray())
+            {
                 out.background = values<3>(numbers(&scene.extras, "rt_background", {}), "rt_background",
                                            glm::vec3(0.0f), 0.0f, kMaxRadiance);
+                out.has_world = true;
+            }
+            if (const tinygltf::Value* a = member(scene.extras, "rt_ambient"); a) {
+                bool known = false;
+                for (AmbientModel m : {AmbientModel::None, AmbientModel::Constant, AmbientModel::Hemisphere})
+                    if (a->IsString() && a->Get<std::string>() == ambient_name(m)) {
+                        out.ambient = m;
+                        known = true;
+                    }
+                if (!known) invalid("scene " + std::to_string(s) + ": extras.rt_ambient is not one of none, constant "
+                                    "or hemisphere");
+            }
         } else {
             for (std::size_t i = 0; i < out.nodes.size(); ++i)
                 if (parents[i] == 0) out.roots.push_back(int(i));

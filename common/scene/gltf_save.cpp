@@ -301,10 +301,14 @@ struct Writer {
         scene.name = asset.name;
         for (int root : asset.roots)
             if (root >= 0 && std::size_t(root) < asset.nodes.size()) scene.nodes.push_back(root);
-        scene.extras = object({{"rt_background", tinygltf::Value(tinygltf::Value::Array{
-                                                     tinygltf::Value(double(asset.background.r)),
-                                                     tinygltf::Value(double(asset.background.g)),
-                                                     tinygltf::Value(double(asset.background.b))})}});
+        // Our own extras: the background (only when the scene has one: a file without it gets the default world
+        // again when read back) and the ambient model.
+        tinygltf::Value::Object extras{{"rt_ambient", tinygltf::Value(std::string(ambient_name(asset.ambient)))}};
+        if (asset.has_world)
+            extras["rt_background"] = tinygltf::Value(tinygltf::Value::Array{
+                tinygltf::Value(double(asset.background.r)), tinygltf::Value(double(asset.background.g)),
+                tinygltf::Value(double(asset.background.b))});
+        scene.extras = tinygltf::Value(std::move(extras));
         model.scenes.push_back(scene);
         model.defaultScene = 0;
         if (model.buffers[0].data.empty()) model.buffers.clear();

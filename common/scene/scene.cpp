@@ -228,6 +228,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     scene.name = asset.name;
     scene.animated = !asset.animations.empty();
     scene.background = glm::clamp(asset.background, glm::vec3(0.0f), glm::vec3(kMaxRadiance));
+    scene.ambient = asset.ambient;
     scene.materials = asset.materials;
     scene.textures = asset.textures;
     for (Material& m : scene.materials)
@@ -359,8 +360,12 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
         scene.default_camera = true;
     }
 
+    // No light in the file (most glTF files): the key light, or the headlight when the camera is inside the bounds,
+    // where the key light would stand outside the walls of an interior and light nothing the camera sees.
     if (scene.lights.empty() && options.add_default_light) {
-        scene.lights.push_back(default_light(scene.bounds));
+        scene.default_headlight = strictly_inside(scene.bounds, scene.camera.position);
+        scene.lights.push_back(scene.default_headlight ? default_headlight(scene.bounds, scene.camera)
+                                                       : default_light(scene.bounds));
         scene.default_light = true;
     }
 
@@ -415,6 +420,45 @@ Light default_light(const Bounds& bounds) {
     light.intensity = 3.14159265358979f * distance * distance;
     light.direction = glm::normalize(center - light.position);
     return light;
+}
+
+bool strictly_inside(const Bounds& bounds, const glm::vec3& p) {
+    return !bounds.empty() && glm::all(glm::greaterThan(p, bounds.lo)) && glm::all(glm::lessThan(p, bounds.hi));
+}
+
+// The headlight (docs/shading.md, "Defaults"): a white point light at the camera, as a viewer's headlight, so
+// everything the camera sees directly is lit (its shadow rays run back along the camera rays) whatever walls stand
+// around it. Its intensity is pi * d^2 with d the distance from the camera to where its view axis leaves the bounds
+// (the slab method: the smallest of the three exit distances), so a white Lambertian surface facing the camera there
+// shades to 1, as under the key light; nearer surfaces are brighter (1/d^2). A camera inside empty or flat bounds
+// (d not positive and finite) uses half the diagonal, or 1.
+Light default_headlight(const Bounds& bounds, const Camera& camera) {
+    float exit = std::numeric_limits<float>::infinity();
+    for (int axis = 0; axis < 3; ++axis) {
+        const float f = camera.forward[axis];
+        if (f > 0.0f) exit = std::min(exit, (bounds.hi[axis] - camera.position[axis]) / f);
+        if (f < 0.0f) exit = std::min(exit, (bounds.lo[axis] - camera.position[axis]) / f);
+    }
+    float distance = exit;
+    if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 0.5f * bounds.diagonal();
+    if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 1.0f;
+    Light light;
+    light.name = "default headlight";
+    light.type = LightType::Point;
+    light.color = glm::vec3(1.0f);
+    light.position = camera.position;
+    light.intensity = std::min(3.14159265358979f * distance * distance, kMaxRadiance);
+    light.direction = camera.forward;
+    return light;
+}
+
+const char* ambient_name(AmbientModel model) {
+    switch (model) {
+    case AmbientModel::None: return "none";
+    case AmbientModel::Constant: return "constant";
+    case AmbientModel::Hemisphere: return "hemisphere";
+    }
+    return "constant";
 }
 
 }  // namespace rt

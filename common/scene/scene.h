@@ -124,6 +124,12 @@ struct Light {
 
 enum class Projection : int { Perspective = 0, Orthographic = 1 };
 
+// The ambient term of the local illumination: light no ray is traced for (docs/shading.md, "Ambient"). It costs no
+// rays, so Whitted stays Whitted. Constant: a fixed fraction of the diffuse colour (the built-in scenes). Hemisphere:
+// brighter from above than from below, weighted by the shading normal, so shape shows in shadow (glTF files).
+enum class AmbientModel : int { None = 0, Constant = 1, Hemisphere = 2 };
+const char* ambient_name(AmbientModel model);   // "none", "constant", "hemisphere"
+
 struct Camera {
     std::string name;
     Projection projection = Projection::Perspective;
@@ -197,6 +203,10 @@ struct SceneAsset {
     std::vector<Light> lights;          // colour/intensity/cone; placement comes from the node
     std::vector<Animation> animations;
     glm::vec3 background{0.0f};         // linear radiance of rays that leave the scene (at most kMaxRadiance)
+    // Whether the scene says what rays leaving it see. Most glTF files do not (a glTF file has no background): then
+    // the driver gives them the default world (docs/shading.md, "Defaults"), unless --background or --environment.
+    bool has_world = true;
+    AmbientModel ambient = AmbientModel::Constant;
     // Every file the loader read (the scene file, its buffers and images), as given; empty for built-in scenes.
     // The driver refuses an output path naming one of them.
     std::vector<std::string> input_files;
@@ -227,6 +237,9 @@ struct Scene {
     // Documented defaults (docs/shading.md) applied because the asset had none; reported in the stats.
     bool default_camera = false;
     bool default_light = false;
+    bool default_headlight = false;     // the default light is the headlight (the camera is inside the bounds)
+    bool default_world = false;         // environment is the default world (set by the driver)
+    AmbientModel ambient = AmbientModel::Constant;
     // The asset has animations: a later time is another frame (the viewer keeps rendering; a still one idles).
     bool animated = false;
     std::size_t triangle_count() const { return material_ids.size(); }
@@ -249,8 +262,12 @@ struct FlattenOptions {
 // Throws SceneError, before allocating, when the frame has more than options.max_triangles triangles.
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles = nullptr);
 
-// The auto-framed camera and key light used when an asset has none (docs/shading.md, "Defaults").
+// The auto-framed camera and the lights used when an asset has none (docs/shading.md, "Defaults"): the key light
+// when the camera is outside the bounds, the headlight when it is inside (an interior).
 Camera default_camera(const Bounds& bounds, float aspect);
 Light default_light(const Bounds& bounds);
+Light default_headlight(const Bounds& bounds, const Camera& camera);
+// Whether p lies strictly inside the bounds (not on a face).
+bool strictly_inside(const Bounds& bounds, const glm::vec3& p);
 
 }  // namespace rt

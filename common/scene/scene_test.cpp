@@ -222,6 +222,66 @@ TEST(Flatten, DefaultCameraFramesTheBoundsAndDefaultLightLightsTheCenter) {
     }
 }
 
+// A box room 4 x 3 x 4 (two triangles on the floor, one on the ceiling span the bounds) with a camera at `eye`
+// looking down -Z: the defaults of docs/shading.md for a camera inside and outside the bounds.
+SceneAsset room_with_camera(const glm::vec3& eye) {
+    Primitive floor = triangle();
+    floor.positions = {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 3, 2}};
+    floor.indices = {0, 1, 2, 0, 2, 3};
+    SceneAsset a = single(floor);
+    a.cameras.push_back(Camera{});
+    Node n;
+    n.camera = 0;
+    n.translation = eye;
+    a.nodes.push_back(n);
+    a.roots.push_back(1);
+    return a;
+}
+
+TEST(Flatten, CameraInsideTheBoundsGetsTheHeadlightNormalisedWhereTheViewAxisLeavesThem) {
+    const Scene s = flatten(room_with_camera({0.5f, 1.5f, 1.0f}), {});
+    ASSERT_TRUE(s.default_light);
+    EXPECT_TRUE(s.default_headlight);
+    ASSERT_EQ(s.lights.size(), 1u);
+    const Light& l = s.lights[0];
+    EXPECT_EQ(l.type, LightType::Point);
+    EXPECT_EQ(l.position, s.camera.position);   // at the eye: everything seen directly is lit
+    // The view axis (-Z) leaves the bounds at z = -2, 3 units away: irradiance pi there.
+    EXPECT_NEAR(l.intensity, 3.14159265f * 9.0f, 1e-4f);
+    EXPECT_EQ(l.name, "default headlight");
+}
+
+TEST(Flatten, CameraOutsideOrOnTheBoundsKeepsTheKeyLight) {
+    for (const glm::vec3 eye : {glm::vec3(0, 1.5f, 6), glm::vec3(0, 1.5f, 2), glm::vec3(0, 3, 0)}) {
+        const Scene s = flatten(room_with_camera(eye), {});
+        ASSERT_TRUE(s.default_light);
+        EXPECT_FALSE(s.default_headlight) << eye.x << "," << eye.y << "," << eye.z;
+        EXPECT_EQ(s.lights[0].name, "default light");
+    }
+    // An auto-framed camera is always outside.
+    EXPECT_FALSE(flatten(single(triangle()), {}).default_headlight);
+}
+
+TEST(DefaultHeadlight, FlatOrEmptyBoundsAndAnAxisAlongAFaceGiveAFiniteLight) {
+    Camera c;
+    c.position = glm::vec3(0.0f);
+    c.forward = glm::vec3(0, 0, -1);
+    for (const Bounds& b : {Bounds{}, [] { Bounds f; f.add({-1, 0, -1}); f.add({1, 0, 1}); return f; }()}) {
+        const Light l = default_headlight(b, c);
+        EXPECT_TRUE(std::isfinite(l.intensity) && l.intensity > 0.0f);
+    }
+}
+
+TEST(StrictlyInside, FacesAndEmptyBoundsAreNotInside) {
+    Bounds b;
+    b.add({0, 0, 0});
+    b.add({1, 1, 1});
+    EXPECT_TRUE(strictly_inside(b, {0.5f, 0.5f, 0.5f}));
+    EXPECT_FALSE(strictly_inside(b, {0.0f, 0.5f, 0.5f}));
+    EXPECT_FALSE(strictly_inside(b, {0.5f, 1.5f, 0.5f}));
+    EXPECT_FALSE(strictly_inside(Bounds{}, {0.0f, 0.0f, 0.0f}));
+}
+
 TEST(Flatten, NoDefaultLightWhenDisabledOrPresent) {
     FlattenOptions o;
     o.add_default_light = false;

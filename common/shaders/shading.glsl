@@ -14,6 +14,24 @@ const float RT_DEFAULT_CUTOFF = 1e-3;
 const float RT_PI = 3.14159265358979;
 const float RT_MAX_RADIANCE = 1e20;   // kMaxRadiance: largest irradiance of a light and emitted radiance
 
+// Twin of rt::ambient_light for the scene's ambient model, chosen at compile time: RT_AMBIENT_NONE,
+// RT_AMBIENT_HEMISPHERE, or neither for the constant term (rt::gpu::Wavefront sets them from the scene).
+const float RT_AMBIENT_GROUND = 0.4;   // kAmbientGround
+const float RT_AMBIENT_RISE = 1.2;     // kAmbientRise
+vec3 ambient_light(vec3 diffuse, vec3 n) {
+#if defined(RT_AMBIENT_NONE)
+    return vec3(0.0);
+#elif defined(RT_AMBIENT_HEMISPHERE)
+    precise float up = 0.5 * (1.0 + n.y);
+    precise float weight = RT_AMBIENT_GROUND + RT_AMBIENT_RISE * up;
+    precise vec3 a = (RT_AMBIENT * weight) * diffuse;
+    return a;
+#else
+    precise vec3 a = RT_AMBIENT * diffuse;
+    return a;
+#endif
+}
+
 // Mirror reflection of d about n (n unit length).
 vec3 reflect_dir(vec3 d, vec3 n) {
     precise vec3 r = d - 2.0 * rt_dot(d, n) * n;

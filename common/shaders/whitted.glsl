@@ -46,9 +46,10 @@ vec3 whitted_absorption(WhittedSurface w, float t) {
 }
 #endif
 
-// The part of the local illumination that needs no shadow ray: emission plus the constant ambient term.
-vec3 whitted_emission_ambient(SurfaceCoefficients s) {
-    precise vec3 c = s.emissive + RT_AMBIENT * s.diffuse;
+// The part of the local illumination that needs no shadow ray: emission plus the ambient term (ambient_light, for
+// the unit shading normal n).
+vec3 whitted_emission_ambient(SurfaceCoefficients s, vec3 n) {
+    precise vec3 c = s.emissive + ambient_light(s.diffuse, n);
     return c;
 }
 

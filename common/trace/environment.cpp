@@ -51,6 +51,23 @@ glm::vec3 sample_environment(const Environment& e, const glm::vec2& uv) {
     return glm::vec3(glm::mix(top, bottom, ay));
 }
 
+std::shared_ptr<const Environment> default_world() {
+    static const std::shared_ptr<const Environment> world = [] {
+        auto e = std::make_shared<Environment>();
+        e->file = "default world";
+        e->width = 8;
+        e->height = 64;
+        for (int row = 0; row < e->height; ++row) {
+            const double v = (row + 0.5) / e->height;                  // 0 at the top = straight up
+            const double y = std::cos(v * 3.14159265358979323846);     // the height of the row's direction
+            const float radiance = float(kWorldNadir + (kWorldZenith - kWorldNadir) * 0.5 * (1.0 + y));
+            for (int x = 0; x < e->width; ++x) e->texels.push_back(glm::vec4(glm::vec3(radiance), 1.0f));
+        }
+        return std::shared_ptr<const Environment>(std::move(e));
+    }();
+    return world;
+}
+
 glm::vec3 miss_radiance(const Scene& scene, const glm::vec3& direction) {
     if (!scene.environment) return scene.background;
     return sample_environment(*scene.environment, environment_uv(direction, scene.environment->rotation));

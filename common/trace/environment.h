@@ -3,6 +3,8 @@
 // written operation for operation alike (environment_glsl_test.cpp checks they agree to the bit).
 #pragma once
 
+#include <memory>
+
 #include <glm/glm.hpp>
 
 #include "../scene/environment.h"
@@ -24,6 +26,14 @@ glm::vec2 environment_uv(const glm::vec3& direction, const glm::vec2& rotation);
 
 // Bilinear between the four texel centres around (u, v), wrapping in u (the seam is continuous), clamping in v.
 glm::vec3 sample_environment(const Environment& environment, const glm::vec2& uv);
+
+// The default world (docs/shading.md, "Defaults"): what rays leaving a glTF file see when it says nothing of it and
+// no --background or --environment is given. A neutral grey studio, brighter above than below: radiance
+// kWorldNadir + (kWorldZenith - kWorldNadir) * (1 + y) / 2 for a unit direction of height y (0.6 at the horizon), the
+// same in every direction around +Y. It is an environment map (8 x 64 texels, rows sampled at their centres and
+// interpolated bilinearly like any map), so the C++ and GLSL lookups that agree to the bit already serve it.
+constexpr float kWorldZenith = 0.9f, kWorldNadir = 0.3f;
+std::shared_ptr<const Environment> default_world();
 
 // The radiance a ray leaving the scene in `direction` brings back: the environment's, or the background colour.
 glm::vec3 miss_radiance(const Scene& scene, const glm::vec3& direction);

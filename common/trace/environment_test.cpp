@@ -87,6 +87,36 @@ TEST(SampleEnvironment, WrapsInUAcrossTheSeamAndClampsInVAtThePoles) {
     EXPECT_EQ(sample_environment(e, {std::nanf(""), 0.5f}), glm::vec3(0.0f));
 }
 
+// The default world (docs/shading.md, "Defaults"): grey, 0.9 straight up, 0.6 at the horizon, 0.3 straight down,
+// the same all round +Y, monotonic in height, finite and within [nadir, zenith] everywhere.
+TEST(DefaultWorld, IsAGreyStudioBrighterAboveThanBelowAndTheSameAllRound) {
+    const std::shared_ptr<const Environment> world = default_world();
+    ASSERT_TRUE(world);
+    EXPECT_EQ(world, default_world());   // one map for the run
+    Scene scene;
+    scene.environment = world;
+    const auto at = [&](const glm::vec3& d) { return miss_radiance(scene, d); };
+    EXPECT_NEAR(at({0, 1, 0}).g, kWorldZenith, 1e-3f);
+    EXPECT_NEAR(at({0, -1, 0}).g, kWorldNadir, 1e-3f);
+    EXPECT_NEAR(at({1, 0, 0}).g, 0.5f * (kWorldZenith + kWorldNadir), 2e-3f);
+    float previous = 1e9f;
+    for (int k = 0; k <= 180; ++k) {
+        const float elevation = glm::radians(90.0f - float(k));
+        const glm::vec3 base = at({std::cos(elevation), std::sin(elevation), 0.0f});
+        EXPECT_EQ(base.r, base.g);
+        EXPECT_EQ(base.g, base.b);
+        EXPECT_LE(base.g, previous + 1e-6f);   // darker going down
+        EXPECT_GE(base.g, kWorldNadir - 1e-6f);
+        EXPECT_LE(base.g, kWorldZenith + 1e-6f);
+        previous = base.g;
+        for (float azimuth : {0.7f, 2.0f, -2.9f}) {   // the same in every direction around +Y
+            const glm::vec3 d(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+                              std::cos(elevation) * std::sin(azimuth));
+            EXPECT_NEAR(at(d).g, base.g, 1e-6f);
+        }
+    }
+}
+
 TEST(MissRadiance, IsTheBackgroundWithoutAMapAndTheMapWithOne) {
     Scene scene;
     scene.background = {0.1f, 0.2f, 0.3f};

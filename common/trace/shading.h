@@ -23,6 +23,29 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kMaxSampleRadiance = 9.2233720e18f;   // 2^63
 static_assert(kMaxSampleRadiance == 0x1p63f);
 
+// The hemisphere ambient (AmbientModel::Hemisphere, docs/shading.md "Ambient"): kAmbient times a weight that runs
+// from kAmbientGround for a normal facing straight down to kAmbientGround + kAmbientRise = 1.6 facing straight up,
+// linear in n.y. Averaged over all directions the weight is 1, so the scene is as bright overall as with the constant
+// term; the 4:1 ratio between sky and ground shows the shape of what lies in shadow.
+constexpr float kAmbientGround = 0.4f;
+constexpr float kAmbientRise = 1.2f;
+
+// The ambient light a surface of diffuse colour `diffuse` with unit shading normal n reflects. Constant:
+// kAmbient * diffuse (the built-in scenes, bit for bit what they always had); none: 0. GLSL twin: ambient_light in
+// shading.glsl, compiled for the scene's model only.
+inline glm::vec3 ambient_light(AmbientModel model, const glm::vec3& diffuse, const glm::vec3& n) {
+    switch (model) {
+    case AmbientModel::None: return glm::vec3(0.0f);
+    case AmbientModel::Hemisphere: {
+        const float up = 0.5f * (1.0f + n.y);                   // 1 facing straight up, 0 straight down
+        const float weight = kAmbientGround + kAmbientRise * up;
+        return (kAmbient * weight) * diffuse;
+    }
+    case AmbientModel::Constant: break;
+    }
+    return kAmbient * diffuse;
+}
+
 // Mirror reflection of d about n (n unit length).
 template <class T> Vec3<T> reflect_dir(const Vec3<T>& d, const Vec3<T>& n) { return d - T(2) * glm::dot(d, n) * n; }
 

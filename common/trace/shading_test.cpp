@@ -7,6 +7,29 @@
 namespace rt {
 namespace {
 
+// The ambient models (docs/shading.md, "Ambient"). Constant is exactly what the built-in scenes' goldens were made
+// with; hemisphere runs from 0.4 to 1.6 times it, linear in n.y, and averages to it over the sphere.
+TEST(AmbientLight, ConstantIsKAmbientTimesDiffuseToTheBitAndNoneIsZero) {
+    const glm::vec3 kd(0.8f, 0.3f, 0.123f), n = glm::normalize(glm::vec3(0.3f, -0.4f, 0.5f));
+    EXPECT_EQ(ambient_light(AmbientModel::Constant, kd, n), kAmbient * kd);
+    EXPECT_EQ(ambient_light(AmbientModel::None, kd, n), glm::vec3(0.0f));
+}
+
+TEST(AmbientLight, HemisphereIsBrighterFacingUpAndAveragesToTheConstantTerm) {
+    const glm::vec3 white(1.0f);
+    EXPECT_NEAR(ambient_light(AmbientModel::Hemisphere, white, {0, 1, 0}).x, 1.6f * kAmbient, 1e-7f);
+    EXPECT_NEAR(ambient_light(AmbientModel::Hemisphere, white, {0, -1, 0}).x, 0.4f * kAmbient, 1e-7f);
+    EXPECT_NEAR(ambient_light(AmbientModel::Hemisphere, white, {1, 0, 0}).x, kAmbient, 1e-7f);
+    // Over uniformly distributed normals n.y is uniform in [-1, 1]: the mean weight is the one at n.y = 0.
+    double sum = 0.0;
+    const int steps = 2000;
+    for (int k = 0; k < steps; ++k) {
+        const float y = -1.0f + 2.0f * (float(k) + 0.5f) / float(steps);
+        sum += ambient_light(AmbientModel::Hemisphere, white, {std::sqrt(1.0f - y * y), y, 0.0f}).x;
+    }
+    EXPECT_NEAR(sum / steps, kAmbient, 1e-6);
+}
+
 TEST(Fresnel, NormalIncidenceGlassIsFourPercent) {
     // ((1.5 - 1) / (1.5 + 1))^2 = 0.04, entering glass from air (eta = 1/1.5) and leaving it (eta = 1.5).
     EXPECT_NEAR(fresnel_exact(1.0f, 1.0f / 1.5f), 0.04f, 1e-6f);

@@ -138,8 +138,8 @@ public:
         const glm::vec3 d = glm::vec3(ray.direction);
         const glm::vec3 n = sp.shading_normal;
 
-        // Local illumination: emission, ambient, and each light not blocked by a shadow ray.
-        glm::vec3 color = s.emissive + kAmbient * s.diffuse;
+        // Local illumination: emission, ambient (no ray: shading.h), and each light not blocked by a shadow ray.
+        glm::vec3 color = s.emissive + ambient_light(scene_.ambient, s.diffuse, n);
         for (std::uint32_t light_index = 0; light_index < scene_.lights.size(); ++light_index) {
             const Light& light = scene_.lights[light_index];
             glm::vec3 to_light;

@@ -45,7 +45,7 @@ void shade(uint i, WavefrontHit entry) {
     const uint n_hits = wf_input_count;
 
     // Local illumination.
-    vec3 local = whitted_emission_ambient(w.coefficients);
+    vec3 local = whitted_emission_ambient(w.coefficients, n);
     for (uint l = wf_light_first; l < wf_light_first + wf_light_count; ++l) {
         const Light light = rt_lights[l];
         vec3 to_light;
