@@ -146,16 +146,18 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         read_group_counts();
     }
     if (!shadow) fold(in);
-    // The leaves' exact tests, counted by rh_leaf.comp and read back per group, go to the pipeline's test counter in
-    // a few adds (one thread each).
-    for (; pending_tests_ > 0;) {
-        const std::uint32_t add = std::uint32_t(std::min<std::uint64_t>(pending_tests_, 1u << 31));
-        fold_.set("rh_mode", 6u);
-        fold_.set("rh_count", add);
-        fold_.dispatch(1);
-        barrier();
-        pending_tests_ -= add;
-    }
+    // The leaves' exact tests, counted by rh_leaf.comp and read back per group, go to the pipeline's test counters
+    // (the total and their ray kind's) in a few adds (one thread each).
+    for (std::uint32_t kind = 0; kind < 4; ++kind)
+        for (std::uint64_t& pending = pending_tests_[kind]; pending > 0;) {
+            const std::uint32_t add = std::uint32_t(std::min<std::uint64_t>(pending, 1u << 31));
+            fold_.set("rh_mode", 6u);
+            fold_.set("rh_count", add);
+            fold_.set("rh_kind", kind);
+            fold_.dispatch(1);
+            barrier();
+            pending -= add;
+        }
     gpu::check_gl("04_ray_hierarchy: trace");
 }
 
@@ -178,7 +180,7 @@ void GpuRayHierarchy::read_group_counts() {
     ks.object_pairs_in += word64(info, kInfoObjectIn);
     ks.object_pairs_out += word64(info, kInfoObjectOut);
     ks.local_tests += exact;
-    pending_tests_ += exact;
+    pending_tests_[group_.kind] += exact;
 }
 
 std::vector<GpuRayHierarchy::Group> GpuRayHierarchy::find_groups(const gpu::BatchTraceInputs& in) {

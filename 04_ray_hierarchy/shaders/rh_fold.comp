@@ -9,7 +9,8 @@
 //   4 prune    per listed hit: rh_keep[i] = 1 if it is still within the tie range (hits left behind by a closer one
 //              are dropped from the list when it fills up: they can no longer matter).
 //   5 scatter  per listed hit: the kept ones to rh_hits_out[offset] (rh_keep bound to the scan of mode 4's flags);
-//   6 count    one thread: adds rh_count ray/triangle tests (the leaves', counted on the CPU) to the counter.
+//   6 count    one thread: adds rh_count ray/triangle tests (the leaves', counted on the CPU) of rays of kind
+//              rh_kind to the counters.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 #include "rh_closest.glsl"
@@ -22,6 +23,7 @@ layout(std430, binding = RH_BINDING_PAIRS) writeonly buffer HitsOut { uvec4 rh_h
 
 uniform uint rh_mode;
 uniform uint rh_count;
+uniform uint rh_kind;   // mode 6
 uniform uint rh_batch_first;
 
 void main() {
@@ -54,7 +56,7 @@ void main() {
         rh_state[i] = s;
         atomicAdd(rh_info[4u + wf_kind(r)], 1u);
         wf_count_tests(1u);
-        wf_flush_tests(r.pixel);
+        wf_flush_tests(r.pixel, wf_kind(r));
     } else if (rh_mode == 3u) {
         const RhRayState s = rh_state[i];
         WavefrontTraceResult result;
@@ -69,6 +71,7 @@ void main() {
     } else if (rh_mode == 6u) {
 #ifdef COUNT_TESTS
         rt_counter_add(RT_COUNTER_INTERSECTION_TESTS, rh_count);
+        rt_counter_add(RT_COUNTER_TESTS_FIRST + rh_kind, rh_count);
 #endif
     } else {
         const uvec4 h = rh_hits[i];   // rh_keep holds the exclusive scan of mode 4's flags now

@@ -35,7 +35,8 @@ struct FrameStats {
 
 // Builds the JSON document with the keys shared by every stage (see the README, "Stats JSON"): stage, scene, width,
 // height, renderer, effects, rays{primary,rasterized,shadow,reflection,refraction}, traced_rays,
-// intersection_tests, time_ms{upload,build,raster,trace,shade,compile,total}, mrays_per_s. `extra` is merged in
+// intersection_tests, intersection_tests_by_kind{primary,shadow,reflection,refraction}, time_ms{upload,build,raster,
+// trace,shade,compile,total}, mrays_per_s. `extra` is merged in
 // last (stage-specific keys, defaults, settings).
 nlohmann::json make_stats_json(const std::string& stage, const std::string& scene, int width, int height,
                                const std::string& renderer, const std::vector<std::string>& effects,

@@ -95,6 +95,8 @@ RayCounters CounterBuffer::ray_counters() const {
     RayCounters r;
     for (int i = 0; i < 4; ++i) r.rays[i] = c.size() > std::size_t(i) ? c[std::size_t(i)] : 0;
     r.intersection_tests = c.size() > kCounterIntersectionTests ? c[kCounterIntersectionTests] : 0;
+    for (unsigned k = 0; k < 4; ++k)
+        r.tests_by_kind[k] = c.size() > kCounterTestsFirst + k ? c[kCounterTestsFirst + k] : 0;
     return r;
 }
 

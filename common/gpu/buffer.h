@@ -83,7 +83,8 @@ enum CounterIndex : unsigned {
     kCounterRefractionRays = 3,
     kCounterIntersectionTests = 4,
     kCounterLoopsCut = 5,          // invocations whose loops the driver ended early (wavefront.glsl)
-    kCounterStageFirst = 8,
+    kCounterTestsFirst = 8,        // + RayKind: the intersection tests by the kind of ray that made them
+    kCounterStageFirst = 12,
 };
 
 // 64-bit event counters on the GPU: `count` pairs of uint (lo, hi) in an SSBO bound at RT_BINDING_COUNTERS, added
@@ -96,7 +97,7 @@ public:
     void bind() const;                     // at RT_BINDING_COUNTERS (bindings.h)
     void bind(GLuint binding) const { buffer_.bind(binding); }
     std::vector<std::uint64_t> read() const;   // waits for the GPU
-    RayCounters ray_counters() const;      // the first five counters as the stats' RayCounters
+    RayCounters ray_counters() const;      // the rays, the tests and the tests by kind as the stats' RayCounters
     unsigned count() const { return count_; }
     const Buffer& buffer() const { return buffer_; }
 

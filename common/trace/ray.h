@@ -29,13 +29,17 @@ struct Hit {
 // The kinds of rays a Whitted tracer casts, counted separately in the stats.
 enum class RayKind : int { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
 
-// Counters every stage reports: rays of each kind and ray/triangle intersection tests.
+// Counters every stage reports: rays of each kind and ray/triangle intersection tests, in all and by the kind of ray
+// that made them (indexed by RayKind). Each stage fills the total and the kinds from separate adds, so that the kinds
+// sum to the total is a check on the stage (the stats' intersection_tests_by_kind; tests/run_cli_case.cmake).
 struct RayCounters {
     std::uint64_t rays[4] = {0, 0, 0, 0};
     std::uint64_t intersection_tests = 0;
+    std::uint64_t tests_by_kind[4] = {0, 0, 0, 0};
     void add(const RayCounters& o) {
         for (int i = 0; i < 4; ++i) rays[i] += o.rays[i];
         intersection_tests += o.intersection_tests;
+        for (int i = 0; i < 4; ++i) tests_by_kind[i] += o.tests_by_kind[i];
     }
     std::uint64_t total_rays() const { return rays[0] + rays[1] + rays[2] + rays[3]; }
 };

@@ -110,7 +110,12 @@ public:
     glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& path_weight, RayCounters& counters,
                        const HitLog* log = nullptr, std::uint32_t path = 1) const {
         Hit<T> hit;
+        const std::uint64_t tests_before = counters.intersection_tests;
         const bool found = tracer_.closest(ray, hit, counters);
+        // The tests by kind: only camera rays start at depth 0; children keep their path's parity (2p, 2p + 1) even
+        // where the path number wraps.
+        const RayKind ray_kind = depth == 0 ? RayKind::Primary : (path & 1u) ? RayKind::Refraction : RayKind::Reflection;
+        counters.tests_by_kind[int(ray_kind)] += counters.intersection_tests - tests_before;
         if (log) {
             const HitRecordKind kind = path == 1   ? HitRecordKind::Primary
                                        : path & 1u ? HitRecordKind::Refraction
@@ -154,7 +159,9 @@ public:
                                   ? std::numeric_limits<T>::infinity()
                                   : glm::length(Vec3<T>(light.position) - shadow.origin);
                 counters.rays[int(RayKind::Shadow)]++;
+                const std::uint64_t shadow_tests_before = counters.intersection_tests;
                 const bool occluded = tracer_.occluded(shadow, counters);
+                counters.tests_by_kind[int(RayKind::Shadow)] += counters.intersection_tests - shadow_tests_before;
                 if (log) log->add(path, HitRecordKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f);
                 if (occluded) continue;
             }

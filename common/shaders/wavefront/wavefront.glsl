@@ -190,17 +190,19 @@ void wf_check_loop_budget() {
 }
 
 // Counting ray/triangle tests: a traversal calls wf_count_tests(n) for the tests it makes; each pass adds the
-// thread's total to the global counter once, at its end (one atomic per thread, not per test), and with
-// RECORD_TESTS_PER_PIXEL (--heatmap) to the ray's pixel. Compiled out without COUNT_TESTS (timing runs).
+// thread's total to the global counter and to its ray kind's once, at its end (one atomic each per thread, not per
+// test), and with RECORD_TESTS_PER_PIXEL (--heatmap) to the ray's pixel. Compiled out without COUNT_TESTS (timing
+// runs).
 uint wf_tests = 0u;
 void wf_count_tests(uint n) {
 #ifdef COUNT_TESTS
     wf_tests += n;
 #endif
 }
-void wf_flush_tests(uint pixel) {
+void wf_flush_tests(uint pixel, uint kind) {
 #ifdef COUNT_TESTS
     rt_counter_add(RT_COUNTER_INTERSECTION_TESTS, wf_tests);
+    rt_counter_add(RT_COUNTER_TESTS_FIRST + kind, wf_tests);
 #ifdef RECORD_TESTS_PER_PIXEL
     if (wf_tests != 0u && pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[pixel], wf_tests);
 #endif
