@@ -42,18 +42,27 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
     Progress progress("01_naive", settings.height, !settings.quiet);
     parallel_rows(settings.height, resolve_thread_count(settings.threads), progress, result.stats.counters,
                   [&](int y, RayCounters& counters) {
-                      std::vector<HitRecord>* hits = row_hits.empty() ? nullptr : &row_hits[std::size_t(y)];
+                      std::vector<HitRecord>* row = row_hits.empty() ? nullptr : &row_hits[std::size_t(y)];
                       for (int x = 0; x < settings.width; ++x) {
                           const std::uint32_t pixel = std::uint32_t(y * settings.width + x);
+                          // --pixel without --dump-hits records only that pixel's rays.
+                          std::vector<HitRecord>* hits =
+                              settings.record_hits_pixel < 0 || settings.record_hits_pixel == std::int64_t(pixel)
+                                  ? row
+                                  : nullptr;
                           const std::uint64_t tests_before = counters.intersection_tests;
                           glm::vec3 sum(0.0f);
                           for (std::size_t i = 0; i < samples.size(); ++i) {
                               const Ray<T> ray = camera_ray<T>(scene.camera, settings.width, settings.height,
                                                                T(x) + T(samples[i].x), T(y) + T(samples[i].y));
                               counters.rays[int(RayKind::Primary)]++;
-                              const HitLog log{hits, std::uint32_t(i), pixel};
+                              // --pixel: the watched pixel's rays also report what they cost.
+                              std::vector<RayWork>* work =
+                                  std::int64_t(pixel) == settings.watch_pixel ? &result.ray_work : nullptr;
+                              const HitLog log{hits, std::uint32_t(i), pixel, work};
+                              const HitLog* logged = hits || work ? &log : nullptr;
                               // One bound for every stage: a sample saturates at 2^63, as the GPU's fixed-point sum.
-                              sum += glm::min(whitted.radiance(ray, 0, glm::vec3(1.0f), counters, hits ? &log : nullptr),
+                              sum += glm::min(whitted.radiance(ray, 0, glm::vec3(1.0f), counters, logged),
                                               glm::vec3(kMaxSampleRadiance));
                           }
                           result.image.at(x, y) = sum / float(samples.size());

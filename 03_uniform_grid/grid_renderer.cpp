@@ -29,7 +29,7 @@ glm::ivec3 parse_grid_res(const std::string& text) {
 }
 
 GridRenderer::GridRenderer()
-    : GpuStage({"03_uniform_grid/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }}) {}
+    : GpuStage({"03_uniform_grid/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }, {}, {}, "grid cells"}) {}
 GridRenderer::~GridRenderer() = default;
 
 void GridRenderer::add_options(CLI::App& app) {

@@ -13,14 +13,16 @@ const char* const kKindNames[4] = {"primary", "shadow", "reflection", "refractio
 RayHierarchyRenderer::RayHierarchyRenderer()
     : GpuStage({"common/brute_force.glsl", {}, {},
                 [this](const gpu::BatchTraceInputs& in) { trace_batch(in, false); },
-                [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); }}) {}
+                [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); },
+                "leaf pairs"}) {}   // --pixel: the ray's (ray, triangle) pairs at level 0, its own node tests
 RayHierarchyRenderer::~RayHierarchyRenderer() = default;
 
 std::string RayHierarchyRenderer::unsupported(const Scene&, const RenderSettings& settings) const {
     // The leaf pass with the opacity test (cut-outs) binds 16 storage blocks, GL 4.5's guaranteed minimum and
     // llvmpipe's limit; counting tests per pixel would be the 17th, and the link fails after the compile.
     if (settings.record_tests_per_pixel && settings.effects.cutouts)
-        return "--heatmap: not available in this stage for a scene with cut-outs (the leaf pass would need 17 GL "
+        return std::string(settings.watch_pixel >= 0 ? "--pixel" : "--heatmap") +
+               ": not available in this stage for a scene with cut-outs (the leaf pass would need 17 GL "
                "storage blocks; GL 4.5 guarantees 16): use stage 03, or --effects without cutouts";
     return {};
 }

@@ -18,10 +18,14 @@ function(rt_add_cli_tests stage)
       "bad_effect_cutout|--effects|cutout|--out|@DIR@/bad_effect_cutout.png"
       "bad_image_type|--out|@DIR@/bad_image_type.bmp"
       "out_folder_missing|--out|@DIR@/no/such/folder/x.png"
-      "camera_out_of_range|--camera|7|--out|@DIR@/camera_out_of_range.png")
+      "camera_out_of_range|--camera|7|--out|@DIR@/camera_out_of_range.png"
+      "pixel_outside_the_image|--width|16|--height|12|--pixel|16,0|--out|@DIR@/pixel_outside_the_image.png"
+      "pixel_not_two_numbers|--pixel|3|--out|@DIR@/pixel_not_two_numbers.png"
+      "pixel_with_paths_beyond_31_bits|--pixel|0,0|--max-depth|31|--out|@DIR@/pixel_with_paths_beyond_31_bits.png")
   if(stage MATCHES "^0[45]_")
     # 04 and 05 cannot count tests per pixel with cut-outs (16 storage blocks): refused before rendering.
-    list(APPEND cases "heatmap_cutouts|--scene|builtin:cutouts|--width|16|--height|12|--heatmap|@DIR@/h.png|--out|@DIR@/heatmap_cutouts.png")
+    list(APPEND cases "heatmap_cutouts|--scene|builtin:cutouts|--width|16|--height|12|--heatmap|@DIR@/h.png|--out|@DIR@/heatmap_cutouts.png"
+                      "pixel_cutouts|--scene|builtin:cutouts|--width|16|--height|12|--pixel|8,6|--out|@DIR@/pixel_cutouts.png")
   endif()
   foreach(case IN LISTS cases)
     # Arguments travel to the script "|"-separated (a ";" would split the test command).
@@ -121,7 +125,8 @@ function(rt_add_cli_tests stage)
     set_tests_properties(cli.${stage}.storage_limit.image_too_large PROPERTIES ENVIRONMENT RT_MAX_SSBO_BYTES=65536)
     set_tests_properties(cli.${stage}.storage_limit.bad_env PROPERTIES ENVIRONMENT RT_MAX_SSBO_BYTES=64k)
   endif()
-  foreach(mode closed_stdout concurrent_export interrupted static_frames help_lists_builtins unsupported_extensions)
+  foreach(mode closed_stdout concurrent_export interrupted static_frames help_lists_builtins unsupported_extensions
+               pixel_ray_tree)
     add_test(NAME cli.${stage}.${mode}
              COMMAND ${CMAKE_COMMAND} -DMODE=${mode} -DEXE=${exe} -DOUT_DIR=${out} -P ${script})
     set_tests_properties(cli.${stage}.${mode} PROPERTIES LABELS "cli;cli-${stage}")

@@ -368,6 +368,46 @@ elseif(MODE STREQUAL "unsupported_extensions")
     message(FATAL_ERROR "expected exit 0 and nothing on stderr with --quiet, got ${rc}: ${err}")
   endif()
 
+elseif(MODE STREQUAL "pixel_ray_tree")
+  # --pixel X,Y prints that pixel's ray tree; its numbers are the heatmap's and the stats'. Pixel (47, 27) of 64x48
+  # builtin:whitted sees the glass sphere: 21 rays down to depth 5 in every stage (the hits tests check they are the
+  # same rays). Every ray the stage reports work for is one of its recorded rays, and the tree's tests add up to the
+  # pixel's heatmap value; in 03 and 04-05 the rays walk grid cells or leaf pairs.
+  fresh_folder(dir pixel_ray_tree)
+  execute_process(COMMAND ${EXE} --scene builtin:whitted --width 64 --height 48 --quiet --pixel 47,27
+                          --stats ${dir}/s.json --heatmap ${dir}/h.png
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "--pixel failed (${rc}): ${err}")
+  endif()
+  file(READ ${dir}/s.json json)
+  foreach(key rays tests heatmap_tests steps steps_name work_without_a_ray)
+    json_get(${key} "${json}" pixel ${key})
+  endforeach()
+  if(NOT rays EQUAL 21 OR NOT tests EQUAL heatmap_tests OR tests LESS_EQUAL 0 OR NOT work_without_a_ray EQUAL 0)
+    message(FATAL_ERROR "pixel (47, 27): ${rays} rays (want 21), ${tests} tests (the heatmap: ${heatmap_tests}), "
+                        "${work_without_a_ray} reports of work for no recorded ray\n${out}")
+  endif()
+  if(NOT steps_name STREQUAL "" AND steps LESS_EQUAL 0)
+    message(FATAL_ERROR "the rays walked no ${steps_name}:\n${out}")
+  endif()
+  string(FIND "${out}" "pixel (47, 27): 21 rays, ${tests} ray/triangle tests (its heatmap value: ${tests})" heading)
+  string(REGEX MATCHALL "\n +(primary|shadow|reflection|refraction) " lines "${out}")
+  list(LENGTH lines printed)
+  if(NOT heading EQUAL 0 OR NOT printed EQUAL 21)
+    message(FATAL_ERROR "expected the heading and 21 ray lines on stdout, got:\n${out}")
+  endif()
+  # Two samples: each has its own tree, and they add up to the pixel's value as well.
+  execute_process(COMMAND ${EXE} --scene builtin:whitted --width 64 --height 48 --quiet --pixel 47,27 --spp 2
+                          --stats ${dir}/s2.json RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  file(READ ${dir}/s2.json json)
+  json_get(tests "${json}" pixel tests)
+  json_get(heatmap_tests "${json}" pixel heatmap_tests)
+  string(FIND "${out}" "  sample 1\n" second)
+  if(NOT rc EQUAL 0 OR NOT tests EQUAL heatmap_tests OR second EQUAL -1)
+    message(FATAL_ERROR "--spp 2: ${tests} tests against the heatmap's ${heatmap_tests}:\n${out}${err}")
+  endif()
+
 elseif(MODE STREQUAL "defaults_for_gltf")
   # docs/shading.md "Defaults": what a glTF file lacks is added and said in the stats. The closed room (camera
   # inside, no light) gets the headlight, the mirror sphere (no camera, no light) the key light; both the default

@@ -141,6 +141,7 @@ bool trace_closest(Ray ray, out Hit hit) {
         }
     }
     wf_count_tests(tests);
+    wf_count_steps(cells);   // --pixel: the cells this ray walked
     grid_record(cells, tests, bound_reached);
     return hit.triangle >= 0;
 }
@@ -168,6 +169,7 @@ bool trace_any(Ray ray) {
         bound_reached = !found && i == bound;
     }
     wf_count_tests(tests);
+    wf_count_steps(cells);   // --pixel: the cells this ray walked
     grid_record(cells, tests, bound_reached);
     return found;
 }

@@ -56,7 +56,7 @@ void main() {
         rh_state[i] = s;
         atomicAdd(rh_info[4u + wf_kind(r)], 1u);
         wf_count_tests(1u);
-        wf_flush_tests(r.pixel, wf_kind(r));
+        wf_flush_ray_tests(r);
     } else if (rh_mode == 3u) {
         const RhRayState s = rh_state[i];
         WavefrontTraceResult result;

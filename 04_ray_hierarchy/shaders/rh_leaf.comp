@@ -61,6 +61,11 @@ void main() {
 #if defined(COUNT_TESTS) && defined(RECORD_TESTS_PER_PIXEL)
             if (r.pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[r.pixel], 1u);
 #endif
+#if defined(COUNT_TESTS) && defined(WATCH_PIXEL)
+            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 1u, 1u);   // --pixel: an exact test, a leaf pair
+        } else {
+            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 0u, 1u);   // a leaf pair the sphere test culled
+#endif
         }
     }
     barrier();

@@ -28,6 +28,7 @@
 #include "options.h"
 #include "output_files.h"
 #include "progress.h"
+#include "ray_tree.h"
 
 namespace rt {
 
@@ -219,6 +220,12 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         effect_names = settings.effects.names();
         settings.record_hits = !options.dump_hits.empty();
         settings.record_tests_per_pixel = !options.heatmap.empty();
+        if (options.pixel) {   // its ray tree needs its rays, what each cost, and its heatmap value
+            settings.watch_pixel = std::int64_t(options.pixel->y) * settings.width + options.pixel->x;
+            settings.record_tests_per_pixel = true;
+            if (!settings.record_hits) settings.record_hits_pixel = settings.watch_pixel;
+            settings.record_hits = true;
+        }
         settings.need_image = !extra;   // frames past the requested ones are only shown
 
         if (frame == 0)
@@ -242,6 +249,15 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
             files.write({"--heatmap", frame_path(options.heatmap, frame, options.frames)},
                         [&](const std::string& file) { write_image_file(file, heatmap.image); });
             result.extra["heatmap"] = heatmap_json(heatmap);
+        }
+        if (options.pixel) {
+            const std::vector<RayTreeLine> tree =
+                ray_tree(result.hits, result.ray_work, std::uint32_t(settings.watch_pixel));
+            const std::uint64_t heatmap_value = result.tests_per_pixel.at(std::size_t(settings.watch_pixel));
+            if (options.frames > 1) print(stage + ": frame " + std::to_string(frame) + "\n");
+            print(format_ray_tree(tree, options.pixel->x, options.pixel->y, heatmap_value, result.ray_work_steps));
+            result.extra["pixel"] = ray_tree_json(tree, options.pixel->x, options.pixel->y, heatmap_value,
+                                                  result.ray_work_steps);
         }
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
         total.add(result.stats);

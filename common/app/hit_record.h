@@ -27,6 +27,18 @@ struct HitRecord {
 };
 static_assert(sizeof(HitRecord) == 48);
 
+// What one ray of the pixel under --pixel X,Y cost (the ray tree printout, driver.cpp): its ray/triangle tests and
+// its traversal's own steps where it has them (03: grid cells walked; 04-05: the ray's leaf pairs, its level-0 node
+// tests). Named like its HitRecord by (sample, path, kind_light); a stage may report one ray in several parts
+// (a traversal in passes), which add up.
+struct RayWork {
+    std::uint32_t sample = 0;
+    std::uint32_t path = 1;
+    std::uint32_t kind_light = 0;
+    std::uint64_t tests = 0;
+    std::uint64_t steps = 0;
+};
+
 inline constexpr char kHitFileMagic[8] = {'R', 'T', 'H', 'I', 'T', 'S', '\0', '\1'};
 
 }  // namespace rt

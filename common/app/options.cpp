@@ -100,6 +100,24 @@ CLI::Validator whole_number_of(const std::vector<long long>& allowed) {
         "ONE OF " + list);
 }
 
+glm::ivec2 parse_pixel(const std::string& text) {
+    const std::size_t comma = text.find(',');
+    if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos)
+        throw std::invalid_argument("'" + text + "' is not X,Y (two whole numbers separated by a comma)");
+    glm::ivec2 p(0);
+    for (int k = 0; k < 2; ++k) {
+        const std::string part = k == 0 ? text.substr(0, comma) : text.substr(comma + 1);
+        if (part.empty() || part.size() > 5 || part.find_first_not_of("0123456789") != std::string::npos)
+            throw std::invalid_argument("'" + text + "' is not X,Y: '" + part + "' is not a whole number from 0 to " +
+                                        std::to_string(kMaxImageSide - 1));
+        p[k] = std::stoi(part);
+        if (p[k] >= kMaxImageSide)
+            throw std::invalid_argument("'" + text + "': " + part + " is out of range: must be at most " +
+                                        std::to_string(kMaxImageSide - 1));
+    }
+    return p;
+}
+
 glm::vec3 parse_background(const std::string& text) {
     glm::vec3 c(0.0f);
     if (text == "black") return c;   // what glTF files got before the default world
@@ -125,8 +143,12 @@ glm::vec3 parse_background(const std::string& text) {
 void add_shared_options(CLI::App& app, Options& o) {
     app.add_option("--scene", o.scene, "builtin:NAME (" + builtin_scene_list() + ") or a .gltf/.glb file")
         ->capture_default_str();
-    app.add_option("--width", o.render.width, "Image width in pixels")->capture_default_str()->check(whole_number_in(1, 16384));
-    app.add_option("--height", o.render.height, "Image height in pixels")->capture_default_str()->check(whole_number_in(1, 16384));
+    app.add_option("--width", o.render.width, "Image width in pixels")
+        ->capture_default_str()
+        ->check(whole_number_in(1, kMaxImageSide));
+    app.add_option("--height", o.render.height, "Image height in pixels")
+        ->capture_default_str()
+        ->check(whole_number_in(1, kMaxImageSide));
     app.add_option("--out", o.out, ".png/.jpg (sRGB 8-bit) or .exr/.hdr (linear float); with --frames, w.png writes w_0000.png, ...");
     app.add_option("--camera", o.camera, "glTF camera index (default: the first camera, else an auto-framed one)")
         ->check(whole_number_in(0, INT_MAX));
@@ -143,6 +165,19 @@ void add_shared_options(CLI::App& app, Options& o) {
     // Diagnostics (with --frames, one file per frame like --out).
     app.add_option("--dump-hits", o.dump_hits, "Write every traced ray and its hit to FILE (common/app/hit_record.h)");
     app.add_option("--heatmap", o.heatmap, "Write a false-colour image of the ray/triangle tests per pixel to FILE");
+    app.add_option_function<std::string>(
+           "--pixel", [&o](const std::string& text) { o.pixel = parse_pixel(text); },
+           "X,Y: print that pixel's ray tree (each ray, its hit and the tests it cost); 0,0 is the top left")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                try {
+                    parse_pixel(text);
+                } catch (const std::invalid_argument& e) {
+                    return std::string(e.what());
+                }
+                return std::string();
+            },
+            "X,Y"));
     add_enum(app, "--heatmap-scale", o.heatmap_scale, {{"linear", HeatmapScale::Linear}, {"log", HeatmapScale::Log}},
              "Colour scale of --heatmap");
     app.add_option("--heatmap-max", o.heatmap_max,
@@ -228,6 +263,14 @@ void validate_options(const Options& o) {
     // A ray's path number doubles per bounce (hit_record.h) and must fit 31 bits.
     if (!o.dump_hits.empty() && o.render.max_depth > 30)
         throw std::invalid_argument("--dump-hits needs --max-depth 30 or less (ray path numbers have 31 bits)");
+    if (o.pixel && o.render.max_depth > 30)
+        throw std::invalid_argument("--pixel needs --max-depth 30 or less (ray path numbers have 31 bits)");
+    if (o.pixel && (o.pixel->x >= o.render.width || o.pixel->y >= o.render.height))
+        throw std::invalid_argument("--pixel " + std::to_string(o.pixel->x) + "," + std::to_string(o.pixel->y) +
+                                    " is outside the " + std::to_string(o.render.width) + "x" +
+                                    std::to_string(o.render.height) + " image (x from 0 to " +
+                                    std::to_string(o.render.width - 1) + ", y from 0 to " +
+                                    std::to_string(o.render.height - 1) + ")");
     if (!o.out.empty() && !is_supported_image_path(o.out))
         throw std::invalid_argument("unsupported image type for --out: " + o.out + " (use " + supported_image_types() + ")");
     if (!o.export_path.empty()) {

@@ -25,6 +25,7 @@ struct Options {
     std::string export_path;                  // write the scene as glTF
     std::string dump_hits;                    // --dump-hits: every traced ray and its hit (hit_record.h)
     std::string heatmap;                      // --heatmap: false-colour ray/triangle tests per pixel (heatmap.h)
+    std::optional<glm::ivec2> pixel;          // --pixel X,Y: print that pixel's ray tree (ray_tree.h)
     HeatmapScale heatmap_scale = HeatmapScale::Linear;
     std::uint32_t heatmap_max = 0;   // --heatmap-max (0: the image's own range)
     std::string effects = "auto";
@@ -71,6 +72,11 @@ CLI::Validator number_in(double lo, double hi, bool exclusive_lo = false);
 CLI::Validator whole_number_in(long long lo, long long hi);
 // An integer option with a few allowed values: whole_number_in's checks, then membership ("5 is not one of 4, 8 or 16").
 CLI::Validator whole_number_of(const std::vector<long long>& allowed);
+
+constexpr int kMaxImageSide = 16384;   // --width and --height at most
+
+// --pixel's value: "X,Y", two whole numbers from 0 (in the image: validate_options). Throws std::invalid_argument.
+glm::ivec2 parse_pixel(const std::string& text);
 
 // --background's value: "black" or "R,G,B", three finite numbers in [0, kMaxRadiance] (linear radiance). Throws
 // std::invalid_argument with one line otherwise.

@@ -40,6 +40,8 @@ struct RenderSettings {
     // Diagnostics, off unless asked for (they cost time and memory):
     bool record_hits = false;             // --dump-hits: fill FrameResult::hits with every traced ray
     bool record_tests_per_pixel = false;  // --heatmap: fill FrameResult::tests_per_pixel
+    std::int64_t watch_pixel = -1;        // --pixel X,Y: y * width + x; fill FrameResult::ray_work for its rays
+    std::int64_t record_hits_pixel = -1;  // with record_hits: only this pixel's rays (--pixel without --dump-hits)
     bool need_image = true;               // false: a frame only a window shows; FrameResult::image may stay empty
                                           // (GPU stages then leave it on the GPU: no read-back)
 };
@@ -51,6 +53,8 @@ struct FrameResult {
     std::vector<HitRecord> hits;                         // with settings.record_hits (hit_record.h)
     std::vector<std::uint32_t> tests_per_pixel;          // with settings.record_tests_per_pixel: ray/triangle
                                                          // tests of all rays of each pixel's tree, y * width + x
+    std::vector<RayWork> ray_work;                       // with settings.watch_pixel: what its rays cost
+    std::string ray_work_steps;                          // what RayWork::steps counts in this stage ("" none)
 };
 
 class Renderer {

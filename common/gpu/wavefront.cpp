@@ -74,7 +74,7 @@ void Wavefront::size_batches() {
     storage_limit_ = storage_block_limit();
     // Per-pixel sums in bands of rows of tiles (the whole image when it fits); the test counts for the whole image.
     const std::size_t tile_row_bytes = kRadianceBytesPerPixel * std::size_t(settings_.width) * 8;
-    const std::size_t tests_bytes = settings_.record_tests_per_pixel ? pixels_ * sizeof(std::uint32_t) : 0;
+    const std::size_t tests_bytes = settings_.record_tests_per_pixel ? tests_words() * sizeof(std::uint32_t) : 0;
     if (tile_row_bytes > storage_limit_ || tests_bytes > storage_limit_)
         throw InputError("wavefront: a " + std::to_string(settings_.width) + "x" +
                          std::to_string(settings_.height) + " image needs " +
@@ -92,6 +92,7 @@ void Wavefront::size_batches() {
 
 void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& settings) {
     settings_ = settings;
+    pixels_ = std::size_t(settings.width) * std::size_t(settings.height);   // before set_uniforms (wf_watch_base)
     lights_ = unsigned(scene.light_count());
     samples_ = 0;
     pass_order_.clear();
@@ -111,6 +112,8 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
                                                                     : "RT_INTERSECT_MOLLER"));
     if (count_tests || settings.record_tests_per_pixel) defines.insert_or_assign("COUNT_TESTS", std::string("1"));
     if (settings.record_tests_per_pixel) defines.insert_or_assign("RECORD_TESTS_PER_PIXEL", std::string("1"));
+    if (settings.record_tests_per_pixel && settings.watch_pixel >= 0)
+        defines.insert_or_assign("WATCH_PIXEL", std::string("1"));   // --pixel (wavefront.glsl, wf_watch)
     if (scene.has_environment()) defines.insert_or_assign("RT_ENVIRONMENT", std::string("1"));   // environment.glsl
     if (scene.ambient() == AmbientModel::None) defines.insert_or_assign("RT_AMBIENT_NONE", std::string("1"));
     if (scene.ambient() == AmbientModel::Hemisphere)
@@ -127,7 +130,6 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
         if (*p) set_uniforms(*p);
 
     // Per-pixel buffers: this sample's radiance (fixed point) and the sum over samples.
-    pixels_ = std::size_t(settings.width) * std::size_t(settings.height);
     size_batches();
     const std::size_t tile_rows = (std::size_t(settings.height) + 7) / 8;
     const std::size_t band_rows = std::min(band_tile_rows_ * 8, std::size_t(settings.height));
@@ -139,8 +141,9 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
         image_bands_[b].clear_u32(0);   // 0x00000000 is 0.0f
     }
     if (settings.record_tests_per_pixel) {
-        tests_per_pixel_.resize(pixels_ * sizeof(std::uint32_t));
+        tests_per_pixel_.resize(tests_words() * sizeof(std::uint32_t));
         tests_per_pixel_.clear_u32(0);
+        ray_work_.clear();
     } else {
         tests_per_pixel_ = Buffer();
     }
@@ -195,6 +198,37 @@ void Wavefront::set_uniforms(const Program& p) const {
     p.set("wf_epsilon", settings_.epsilon);
     p.set("wf_image_size", glm::ivec2(settings_.width, settings_.height));
     p.set("wf_loop_probe", 2u);   // wf_check_loop_budget()
+    if (watching()) {
+        p.set("wf_watch_pixel", unsigned(settings_.watch_pixel));
+        p.set("wf_watch_base", unsigned(pixels_));
+    }
+}
+
+// --pixel: the per-pixel counts, then the watch list (wavefront.glsl, wf_watch): its count and its entries.
+std::size_t Wavefront::tests_words() const {
+    return pixels_ + (watching() ? 1 + kWatchCapacity * kWatchEntryWords : 0);
+}
+
+// After each sample: the watched pixel's entries become RayWork of that sample, and the list starts empty again.
+void Wavefront::drain_watch() {
+    std::uint32_t used = 0;
+    tests_per_pixel_.download(&used, sizeof used, pixels_ * sizeof(std::uint32_t));
+    if (used > kWatchCapacity)
+        throw std::runtime_error("--pixel: the pixel's rays make more than " + std::to_string(kWatchCapacity) +
+                                 " parts of a ray tree in one sample; watch a simpler pixel or use fewer lights");
+    if (used == 0) return;
+    std::vector<std::uint32_t> words(std::size_t(used) * kWatchEntryWords);
+    tests_per_pixel_.download(words.data(), words.size() * sizeof(std::uint32_t),
+                              (pixels_ + 1) * sizeof(std::uint32_t));
+    for (std::uint32_t e = 0; e < used; ++e) {
+        const std::uint32_t* w = &words[std::size_t(e) * kWatchEntryWords];
+        const std::uint64_t tests = std::uint64_t(w[2]) | std::uint64_t(w[3]) << 32;
+        ray_work_.push_back(RayWork{std::uint32_t(samples_), w[0], w[1], tests, w[4]});
+    }
+    std::fill(words.begin(), words.end(), 0u);
+    const std::uint32_t zero = 0;
+    tests_per_pixel_.upload(&zero, sizeof zero, pixels_ * sizeof(std::uint32_t));
+    tests_per_pixel_.upload(words.data(), words.size() * sizeof(std::uint32_t), (pixels_ + 1) * sizeof(std::uint32_t));
 }
 
 void Wavefront::record_pass(const std::string& name) {
@@ -259,6 +293,7 @@ void Wavefront::for_each_tile_batch(F&& run_batch) {
         }
         resolve(band);
     }
+    if (watching()) drain_watch();
     ++samples_;
 }
 
@@ -472,7 +507,7 @@ void Wavefront::run_collect(const Program& collect, Buffer& rays, std::size_t fi
 // empty).
 void Wavefront::record_primary_slots(std::size_t slots) {
     for (const WavefrontHit& h : hit_slots_.download<WavefrontHit>(slots))
-        if (h.ray.pixel != kNoPixel)
+        if (h.ray.pixel != kNoPixel && recorded(h.ray.pixel))
             hit_records_.push_back(make_record(h.ray, samples_, HitRecordKind::Primary, h.triangle,
                                                h.triangle >= 0 ? h.t : 0.0f));
 }
@@ -483,11 +518,14 @@ void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t c
     if (shadow) {
         const std::vector<std::uint32_t> occluded = results_.download<std::uint32_t>(count);
         for (std::size_t i = 0; i < count; ++i)
-            hit_records_.push_back(make_record(queue[i], samples_, HitRecordKind::Shadow, occluded[i] ? 1 : -1, 0.0f));
+            if (recorded(queue[i].pixel))
+                hit_records_.push_back(
+                    make_record(queue[i], samples_, HitRecordKind::Shadow, occluded[i] ? 1 : -1, 0.0f));
         return;
     }
     const std::vector<WavefrontTraceResult> results = results_.download<WavefrontTraceResult>(count);
     for (std::size_t i = 0; i < count; ++i) {
+        if (!recorded(queue[i].pixel)) continue;
         const auto kind = HitRecordKind(queue[i].depth_kind >> 16);
         hit_records_.push_back(make_record(queue[i], samples_, kind, results[i].triangle,
                                            results[i].triangle >= 0 ? results[i].t : 0.0f));
@@ -540,6 +578,9 @@ void Wavefront::finish_frame(FrameResult& result) {
     if (settings_.record_hits) result.hits = std::move(hit_records_);
     hit_records_.clear();
     if (settings_.record_tests_per_pixel) result.tests_per_pixel = tests_per_pixel_.download<std::uint32_t>(pixels_);
+    result.ray_work = std::move(ray_work_);
+    ray_work_.clear();
+    result.ray_work_steps = traversal_.steps;
 }
 
 }  // namespace rt::gpu

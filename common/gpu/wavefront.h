@@ -103,6 +103,8 @@ struct Traversal {
     std::function<void()> bind;       // binds its buffers before the trace and shadow passes (may be empty)
     // Optional: whole-queue traversals replacing the per-ray trace and shadow passes (may be empty).
     std::function<void(const BatchTraceInputs&)> trace_batch, shadow_batch;
+    // --pixel: what the traversal's wf_count_steps counts per ray ("" when it counts none; RayWork::steps).
+    std::string steps;
 };
 
 class Wavefront {
@@ -193,6 +195,15 @@ private:
     void bind_traversal() const;
     void prepare_camera_tracing();
     std::size_t gather_deferred_rays(std::size_t slots);   // stage 02 with cut-outs (shade_sample)
+    // --pixel (settings.watch_pixel; the driver asks for the per-pixel counts with it): the watch list of
+    // wavefront.glsl after the per-pixel counts, WF_WATCH_CAPACITY entries of WF_WATCH_ENTRY words.
+    bool recorded(std::uint32_t pixel) const {   // --dump-hits: every pixel; --pixel alone: that one
+        return settings_.record_hits_pixel < 0 || std::int64_t(pixel) == settings_.record_hits_pixel;
+    }
+    bool watching() const { return settings_.record_tests_per_pixel && settings_.watch_pixel >= 0; }
+    static constexpr std::size_t kWatchCapacity = 65536, kWatchEntryWords = 6;
+    std::size_t tests_words() const;
+    void drain_watch();
 
     Traversal traversal_;
     RenderSettings settings_;
@@ -214,6 +225,7 @@ private:
     std::vector<Buffer> image_bands_;     // the float sum over samples, band by band
     CounterBuffer counters_;
     std::vector<HitRecord> hit_records_;
+    std::vector<RayWork> ray_work_;   // --pixel, drained after each sample
     std::vector<std::string> pass_order_;
     std::map<std::string, int> dispatches_;
 };

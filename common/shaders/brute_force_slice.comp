@@ -44,6 +44,6 @@ void main() {
     result.v = hit.triangle >= 0 ? hit.v : 0.0;
     bf_results[i] = result;
 #endif
-    wf_flush_tests(r.pixel, wf_kind(r));
+    wf_flush_ray_tests(r);
     wf_check_loop_budget();
 }

@@ -35,15 +35,19 @@ struct WhittedSettings {
     Effects effects;
 };
 
-// Where the rays of one camera sample go when hits are recorded (--dump-hits): the records of hit_record.h.
+// Where the rays of one camera sample go when hits are recorded (--dump-hits: the records of hit_record.h) or when
+// the pixel is watched (--pixel: what each ray cost). Either pointer may be null.
 struct HitLog {
     std::vector<HitRecord>* records;
     std::uint32_t sample = 0;
     std::uint32_t pixel = 0;   // y * width + x
+    std::vector<RayWork>* work = nullptr;
 
     template <class T>
     void add(std::uint32_t path, HitRecordKind kind, std::uint32_t light, const Ray<T>& ray, std::int32_t triangle,
-             float t) const {
+             float t, std::uint64_t tests) const {
+        if (work) work->push_back(RayWork{sample, path, std::uint32_t(kind) | (light << 8), tests, 0});
+        if (!records) return;
         HitRecord r;
         r.sample = sample;
         r.pixel = pixel;
@@ -114,13 +118,16 @@ public:
         const bool found = tracer_.closest(ray, hit, counters);
         // The tests by kind: only camera rays start at depth 0; children keep their path's parity (2p, 2p + 1) even
         // where the path number wraps.
-        const RayKind ray_kind = depth == 0 ? RayKind::Primary : (path & 1u) ? RayKind::Refraction : RayKind::Reflection;
-        counters.tests_by_kind[int(ray_kind)] += counters.intersection_tests - tests_before;
+        const RayKind ray_kind = depth == 0   ? RayKind::Primary
+                                 : (path & 1u) ? RayKind::Refraction
+                                               : RayKind::Reflection;
+        const std::uint64_t tests = counters.intersection_tests - tests_before;
+        counters.tests_by_kind[int(ray_kind)] += tests;
         if (log) {
             const HitRecordKind kind = path == 1   ? HitRecordKind::Primary
                                        : path & 1u ? HitRecordKind::Refraction
                                                    : HitRecordKind::Reflection;
-            log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f);
+            log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f, tests);
         }
         if (!found) return miss_radiance(scene_, glm::vec3(ray.direction));   // environment.h
         SurfacePoint<T> sp = surface_point(scene_, ray, hit);
@@ -161,8 +168,10 @@ public:
                 counters.rays[int(RayKind::Shadow)]++;
                 const std::uint64_t shadow_tests_before = counters.intersection_tests;
                 const bool occluded = tracer_.occluded(shadow, counters);
-                counters.tests_by_kind[int(RayKind::Shadow)] += counters.intersection_tests - shadow_tests_before;
-                if (log) log->add(path, HitRecordKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f);
+                const std::uint64_t shadow_tests = counters.intersection_tests - shadow_tests_before;
+                counters.tests_by_kind[int(RayKind::Shadow)] += shadow_tests;
+                if (log)
+                    log->add(path, HitRecordKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f, shadow_tests);
                 if (occluded) continue;
             }
             color += shade_light(s, incidence, n, to_light, -d);

@@ -15,6 +15,6 @@ void main() {
     if (i >= wf_input_count) return;
     const WavefrontRay r = wf_rays_in[wf_input_first + i];
     wf_occluded[i] = trace_any(wf_ray(r)) ? 1u : 0u;
-    wf_flush_tests(r.pixel, wf_kind(r));
+    wf_flush_ray_tests(r);
     wf_check_loop_budget();
 }

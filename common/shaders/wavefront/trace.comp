@@ -29,6 +29,6 @@ void main() {
         result.v = hit.v;
     }
     wf_trace_results[i] = result;
-    wf_flush_tests(r.pixel, wf_kind(r));
+    wf_flush_ray_tests(r);
     wf_check_loop_budget();
 }

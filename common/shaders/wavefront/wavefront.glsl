@@ -189,22 +189,64 @@ void wf_check_loop_budget() {
     if (runs != wf_loop_probe) rt_counter_add(RT_COUNTER_LOOPS_CUT, 1u);
 }
 
-// Counting ray/triangle tests: a traversal calls wf_count_tests(n) for the tests it makes; each pass adds the
-// thread's total to the global counter and to its ray kind's once, at its end (one atomic each per thread, not per
-// test), and with RECORD_TESTS_PER_PIXEL (--heatmap) to the ray's pixel. Compiled out without COUNT_TESTS (timing
-// runs).
-uint wf_tests = 0u;
+// --pixel X,Y (WATCH_PIXEL, with RECORD_TESTS_PER_PIXEL): what each ray of that pixel costs, for the ray tree the
+// driver prints. After the per-pixel counts, wf_tests_per_pixel holds at wf_watch_base the number of entries used,
+// then WF_WATCH_CAPACITY entries of 6 uints: (path, kind | light << 8, tests lo, tests hi, steps, unused), the key
+// named as the ray's HitRecord (hit_record.h). A part for a key already listed is added to it; two threads adding the
+// first part of one key at once may make two entries, which the CPU adds up. Drained after every sample.
+#ifdef WATCH_PIXEL
+#define WF_WATCH_CAPACITY 65536u
+#define WF_WATCH_ENTRY 6u
+uniform uint wf_watch_pixel;   // y * width + x
+uniform uint wf_watch_base;    // the number of pixels
+void wf_watch(uint pixel, uint path, uint kind_light, uint tests, uint steps) {
+    if (pixel != wf_watch_pixel) return;
+    uint entry = 0xffffffffu;
+    const uint used = min(wf_tests_per_pixel[wf_watch_base], WF_WATCH_CAPACITY);
+    for (uint e = 0u; e < used && entry == 0xffffffffu; ++e) {
+        const uint at = wf_watch_base + 1u + e * WF_WATCH_ENTRY;
+        if (wf_tests_per_pixel[at] == path && wf_tests_per_pixel[at + 1u] == kind_light) entry = e;
+    }
+    if (entry == 0xffffffffu) {
+        entry = atomicAdd(wf_tests_per_pixel[wf_watch_base], 1u);
+        if (entry >= WF_WATCH_CAPACITY) return;   // the CPU sees the count beyond the capacity and refuses the frame
+        const uint at = wf_watch_base + 1u + entry * WF_WATCH_ENTRY;
+        wf_tests_per_pixel[at] = path;
+        wf_tests_per_pixel[at + 1u] = kind_light;
+    }
+    const uint at = wf_watch_base + 1u + entry * WF_WATCH_ENTRY;
+    const uint old = atomicAdd(wf_tests_per_pixel[at + 2u], tests);
+    if (old + tests < old) atomicAdd(wf_tests_per_pixel[at + 3u], 1u);
+    atomicAdd(wf_tests_per_pixel[at + 4u], steps);
+}
+#endif
+
+// Counting ray/triangle tests: a traversal calls wf_count_tests(n) for the tests it makes (and wf_count_steps(n) for
+// its own steps, 03's grid cells, which only --pixel reports); each pass adds the thread's total to the global
+// counter and to its ray kind's once, at its end (one atomic each per thread, not per test), and with
+// RECORD_TESTS_PER_PIXEL (--heatmap) to the ray's pixel. Compiled out without COUNT_TESTS (timing runs).
+uint wf_tests = 0u, wf_steps = 0u;
 void wf_count_tests(uint n) {
 #ifdef COUNT_TESTS
     wf_tests += n;
 #endif
 }
-void wf_flush_tests(uint pixel, uint kind) {
+void wf_count_steps(uint n) {
+#ifdef WATCH_PIXEL
+    wf_steps += n;
+#endif
+}
+void wf_flush_tests(uint pixel, uint kind, uint path, uint light) {
 #ifdef COUNT_TESTS
     rt_counter_add(RT_COUNTER_INTERSECTION_TESTS, wf_tests);
     rt_counter_add(RT_COUNTER_TESTS_FIRST + kind, wf_tests);
 #ifdef RECORD_TESTS_PER_PIXEL
     if (wf_tests != 0u && pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[pixel], wf_tests);
 #endif
+#ifdef WATCH_PIXEL
+    wf_watch(pixel, path, kind | light << 8u, wf_tests, wf_steps);
+#endif
 #endif
 }
+// The same for the one ray a thread of a per-ray pass traced.
+void wf_flush_ray_tests(WavefrontRay r) { wf_flush_tests(r.pixel, wf_kind(r), r.path, r.light); }
