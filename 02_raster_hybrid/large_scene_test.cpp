@@ -58,7 +58,7 @@ void expect_hits_like_stage01(const FrameResult& a, const Scene& scene, const Re
     bounds.t_ulps = 64;
     const HitComparison c = compare_hits(a.hits, b.hits, bounds);
     EXPECT_TRUE(c.passed(bounds)) << c.report(bounds);
-    EXPECT_GT(c.count_a[int(HitRecordKind::Shadow)], 100u);
+    EXPECT_GT(c.count_a[int(RayKind::Shadow)], 100u);
 }
 
 TEST(BruteForceSlices, TracedRaysOfASceneBeyondOneInvocationsLoopLimitHitWhatStage01Hits) {

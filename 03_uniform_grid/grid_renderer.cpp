@@ -11,10 +11,6 @@
 
 namespace rt {
 
-namespace {
-const char* const kKindNames[4] = {"primary", "shadow", "reflection", "refraction"};
-}  // namespace
-
 glm::ivec3 parse_grid_res(const std::string& text) {
     glm::ivec3 res;
     std::istringstream in(text);
@@ -139,7 +135,7 @@ void GridRenderer::add_stage_stats(FrameResult& result) {
     nlohmann::json kinds = nlohmann::json::object();
     for (int k = 0; k < 4; ++k) {
         if (s[k] == 0) continue;
-        kinds[kKindNames[k]] = {{"rays", s[k]},
+        kinds[ray_kind_name(RayKind(k))] = {{"rays", s[k]},
                                 {"cells_visited_per_ray", double(s[4 + k]) / double(s[k])},
                                 {"tests_per_ray", double(s[8 + k]) / double(s[k])}};
     }

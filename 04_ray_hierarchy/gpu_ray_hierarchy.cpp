@@ -10,7 +10,6 @@ namespace {
 using gpu::Buffer;
 using gpu::Program;
 
-constexpr const char* kKindNames[4] = {"primary", "shadow", "reflection", "refraction"};
 constexpr std::size_t kMaxCapacity = std::size_t(1) << 20;   // entries per buffer: 16 MiB of (node, triangle) pairs
 constexpr std::uint32_t kTriangleFlag = 0x80000000u;          // rh_common.glsl: RH_TRIANGLE_FLAG
 constexpr std::uint32_t kMaxRayIndex = 1u << 27;              // RH_RAY_INDEX_BITS
@@ -81,7 +80,7 @@ std::uint32_t GpuRayHierarchy::read_info(int index) {
 }
 
 std::string GpuRayHierarchy::phase(const char* name) const {
-    return std::string(name) + "." + kKindNames[group_.kind];
+    return std::string(name) + "." + ray_kind_name(RayKind(group_.kind));
 }
 
 // The buffers of one step of the traversal, for `pairs` pairs tested there (grown as needed, never shrunk).

@@ -6,10 +6,6 @@
 
 namespace rt {
 
-namespace {
-const char* const kKindNames[4] = {"primary", "shadow", "reflection", "refraction"};
-}  // namespace
-
 RayHierarchyRenderer::RayHierarchyRenderer()
     : GpuStage({"common/brute_force.glsl", {}, {},
                 [this](const gpu::BatchTraceInputs& in) { trace_batch(in, false); },
@@ -114,7 +110,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
                               {"pairs_out", L.pairs_out}});
         }
         const std::uint64_t tests = s.local_tests + s.fold_tests;
-        const std::string kind = kKindNames[k];
+        const std::string kind = ray_kind_name(RayKind(k));
         kinds[kind] = {
             {"rays", s.rays},
             {"groups", s.groups},

@@ -13,7 +13,6 @@ namespace rt {
 
 namespace {
 
-constexpr const char* kKindNames[4] = {"primary", "shadow", "reflection", "refraction"};
 constexpr std::size_t kExamplesPerCategory = 5;
 
 auto key(const HitRecord& r) { return std::make_tuple(r.sample, r.pixel, r.path, r.kind_light); }
@@ -24,8 +23,8 @@ std::string describe(const HitRecord& r) {
     char text[160];
     const std::uint32_t kind = kind_of(r);
     std::snprintf(text, sizeof text, "sample %u pixel %u path %u %s%s", r.sample, r.pixel, r.path,
-                  kind < 4 ? kKindNames[kind] : "unknown-kind",
-                  kind == std::uint32_t(HitRecordKind::Shadow) ? (" light " + std::to_string(r.kind_light >> 8)).c_str()
+                  ray_kind_name(RayKind(kind)),
+                  kind == std::uint32_t(RayKind::Shadow) ? (" light " + std::to_string(r.kind_light >> 8)).c_str()
                                                                : "");
     return text;
 }
@@ -110,7 +109,7 @@ HitComparison compare_hits(std::vector<HitRecord> a, std::vector<HitRecord> b, c
     std::set<std::pair<std::uint32_t, std::uint32_t>> excluded_samples;
     merge_by_key(a, b, [&](const HitRecord* x, const HitRecord* y) {
         const HitRecord& r = x ? *x : *y;
-        if (kind_of(r) != std::uint32_t(HitRecordKind::Primary)) return;
+        if (kind_of(r) != std::uint32_t(RayKind::Primary)) return;
         if (x && y && compare_pair(*x, *y, options) == Outcome::Match) return;
         c.differing_primaries++;
         excluded_samples.insert(sample_of(r));
@@ -124,7 +123,7 @@ HitComparison compare_hits(std::vector<HitRecord> a, std::vector<HitRecord> b, c
     // Pass 2: every other ray.
     merge_by_key(a, b, [&](const HitRecord* x, const HitRecord* y) {
         const HitRecord& r = x ? *x : *y;
-        if (kind_of(r) == std::uint32_t(HitRecordKind::Primary)) return;
+        if (kind_of(r) == std::uint32_t(RayKind::Primary)) return;
         if (excluded_samples.count(sample_of(r))) {
             c.excluded += (x ? 1 : 0) + (y ? 1 : 0);
             return;
@@ -167,7 +166,7 @@ std::string HitComparison::report(const HitCompareOptions& options) const {
     char line[256];
     s += "rays per kind (A / B):";
     for (int k = 0; k < 4; ++k) {
-        std::snprintf(line, sizeof line, " %s %llu / %llu", kKindNames[k], (unsigned long long)count_a[std::size_t(k)],
+        std::snprintf(line, sizeof line, " %s %llu / %llu", ray_kind_name(RayKind(k)), (unsigned long long)count_a[std::size_t(k)],
                       (unsigned long long)count_b[std::size_t(k)]);
         s += line;
     }

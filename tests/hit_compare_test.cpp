@@ -10,7 +10,7 @@
 namespace rt {
 namespace {
 
-HitRecord ray(std::uint32_t pixel, std::uint32_t path, HitRecordKind kind, std::int32_t triangle, float t,
+HitRecord ray(std::uint32_t pixel, std::uint32_t path, RayKind kind, std::int32_t triangle, float t,
               std::uint32_t light = 0) {
     HitRecord r;
     r.pixel = pixel;
@@ -26,10 +26,10 @@ HitRecord ray(std::uint32_t pixel, std::uint32_t path, HitRecordKind kind, std::
 
 // Two pixels: primary, a shadow ray per light (2 lights), a reflection from pixel 0.
 std::vector<HitRecord> scene_dump() {
-    return {ray(0, 1, HitRecordKind::Primary, 3, 1.5f),  ray(0, 1, HitRecordKind::Shadow, -1, 0.0f, 0),
-            ray(0, 1, HitRecordKind::Shadow, 1, 0.0f, 1), ray(0, 2, HitRecordKind::Reflection, 7, 2.25f),
-            ray(1, 1, HitRecordKind::Primary, 4, 1.75f), ray(1, 1, HitRecordKind::Shadow, -1, 0.0f, 0),
-            ray(1, 1, HitRecordKind::Shadow, -1, 0.0f, 1)};
+    return {ray(0, 1, RayKind::Primary, 3, 1.5f),  ray(0, 1, RayKind::Shadow, -1, 0.0f, 0),
+            ray(0, 1, RayKind::Shadow, 1, 0.0f, 1), ray(0, 2, RayKind::Reflection, 7, 2.25f),
+            ray(1, 1, RayKind::Primary, 4, 1.75f), ray(1, 1, RayKind::Shadow, -1, 0.0f, 0),
+            ray(1, 1, RayKind::Shadow, -1, 0.0f, 1)};
 }
 
 float ulps_above(float x, int n) {
@@ -71,7 +71,7 @@ TEST(HitCompare, AMissingRayIsReportedOnItsSide) {
     const HitComparison c = compare_hits(scene_dump(), b, {});
     EXPECT_EQ(c.only_a, 1u);
     EXPECT_EQ(c.only_b, 0u);
-    EXPECT_EQ(c.count_b[std::size_t(HitRecordKind::Shadow)], 3u);
+    EXPECT_EQ(c.count_b[std::size_t(RayKind::Shadow)], 3u);
     EXPECT_FALSE(c.passed({}));
     const HitComparison reversed = compare_hits(b, scene_dump(), {});
     EXPECT_EQ(reversed.only_b, 1u);
@@ -99,7 +99,7 @@ TEST(HitCompare, TAndRayAreComparedWithinTheUlpBound) {
 TEST(HitCompare, ADifferingPrimaryExcludesItsTreeWithinThePrimaryFraction) {
     std::vector<HitRecord> b = scene_dump();
     b[0].triangle = 9;                                      // pixel 0 sees another triangle (a shared edge) ...
-    b[3] = ray(0, 3, HitRecordKind::Refraction, 2, 1.0f);   // ... so its tree differs
+    b[3] = ray(0, 3, RayKind::Refraction, 2, 1.0f);   // ... so its tree differs
     HitCompareOptions options;
     HitComparison c = compare_hits(scene_dump(), b, options);
     EXPECT_EQ(c.differing_primaries, 1u);

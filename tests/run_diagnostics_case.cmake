@@ -20,7 +20,7 @@ if(MODE STREQUAL "dump_hits_and_heatmap_per_frame")
         message(FATAL_ERROR "--frames 2 did not write ${file}")
       endif()
     endforeach()
-    # 8 bytes of magic, then 48 bytes per traced ray (common/app/hit_record.h).
+    # 8 bytes of magic, then 48 bytes per traced ray (common/trace/hit_record.h).
     set(rays 0)
     foreach(kind primary shadow reflection refraction)
       string(JSON n GET "${json}" frame_stats ${frame} rays ${kind})

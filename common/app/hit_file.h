@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "hit_record.h"
+#include "../trace/hit_record.h"
 
 namespace rt {
 

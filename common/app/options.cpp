@@ -163,7 +163,7 @@ void add_shared_options(CLI::App& app, Options& o) {
     app.add_option("--threads", o.render.threads, "CPU threads (0 = all)")->capture_default_str()->check(whole_number_in(0, 1024));
     app.add_option("--export", o.export_path, "Write the scene as glTF 2.0 (.gltf or .glb) to open it in Blender");
     // Diagnostics (with --frames, one file per frame like --out).
-    app.add_option("--dump-hits", o.dump_hits, "Write every traced ray and its hit to FILE (common/app/hit_record.h)");
+    app.add_option("--dump-hits", o.dump_hits, "Write every traced ray and its hit to FILE (common/trace/hit_record.h)");
     app.add_option("--heatmap", o.heatmap, "Write a false-colour image of the ray/triangle tests per pixel to FILE");
     app.add_option_function<std::string>(
            "--pixel", [&o](const std::string& text) { o.pixel = parse_pixel(text); },

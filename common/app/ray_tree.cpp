@@ -28,17 +28,7 @@ std::string count_of(std::uint64_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-HitRecordKind kind_of(const HitRecord& r) { return HitRecordKind(r.kind_light & 0xffu); }
-
-const char* kind_name(HitRecordKind k) {
-    switch (k) {
-    case HitRecordKind::Primary: return "primary";
-    case HitRecordKind::Shadow: return "shadow";
-    case HitRecordKind::Reflection: return "reflection";
-    case HitRecordKind::Refraction: return "refraction";
-    }
-    return "?";
-}
+RayKind kind_of(const HitRecord& r) { return RayKind(r.kind_light & 0xffu); }
 
 }  // namespace
 
@@ -74,12 +64,12 @@ std::vector<RayTreeLine> ray_tree(const std::vector<HitRecord>& hits, const std:
         line.steps = c.second;
         lines.push_back(line);
     }
-    for (RayTreeLine& l : lines) l.depth = path_depth(l.ray.path) + (kind_of(l.ray) == HitRecordKind::Shadow ? 1 : 0);
+    for (RayTreeLine& l : lines) l.depth = path_depth(l.ray.path) + (kind_of(l.ray) == RayKind::Shadow ? 1 : 0);
     std::stable_sort(lines.begin(), lines.end(), [](const RayTreeLine& a, const RayTreeLine& b) {
         if (a.ray.sample != b.ray.sample) return a.ray.sample < b.ray.sample;
         if (a.ray.path != b.ray.path) return path_before(a.ray.path, b.ray.path);
-        const bool a_shadow = kind_of(a.ray) == HitRecordKind::Shadow;
-        const bool b_shadow = kind_of(b.ray) == HitRecordKind::Shadow;
+        const bool a_shadow = kind_of(a.ray) == RayKind::Shadow;
+        const bool b_shadow = kind_of(b.ray) == RayKind::Shadow;
         if (a_shadow != b_shadow) return !a_shadow;   // the ray first, then the shadow rays of its hit
         return (a.ray.kind_light >> 8) < (b.ray.kind_light >> 8);
     });
@@ -104,14 +94,14 @@ std::string format_ray_tree(const std::vector<RayTreeLine>& lines, int x, int y,
             out += "  sample " + std::to_string(sample) + "\n";
         }
         const HitRecord& r = l.ray;
-        const HitRecordKind kind = kind_of(r);
-        std::string name = kind_name(kind);
-        name += kind == HitRecordKind::Shadow ? " to light " + std::to_string(r.kind_light >> 8)
+        const RayKind kind = kind_of(r);
+        std::string name = ray_kind_name(kind);
+        name += kind == RayKind::Shadow ? " to light " + std::to_string(r.kind_light >> 8)
                                               : " path " + std::to_string(r.path);
         std::string hit;
         if (r.triangle == -2)
             hit = "(no such ray in the stage's records)";
-        else if (kind == HitRecordKind::Shadow)
+        else if (kind == RayKind::Shadow)
             hit = r.triangle == 1 ? "blocked" : "reaches the light";
         else if (r.triangle >= 0) {
             std::snprintf(buf, sizeof buf, "hits triangle %d at t = %.6g", r.triangle, double(r.t));

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hit_record.h"
+#include "../trace/hit_record.h"
 
 namespace rt {
 

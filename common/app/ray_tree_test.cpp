@@ -7,7 +7,7 @@
 namespace rt {
 namespace {
 
-HitRecord ray(std::uint32_t sample, std::uint32_t path, HitRecordKind kind, std::uint32_t light = 0,
+HitRecord ray(std::uint32_t sample, std::uint32_t path, RayKind kind, std::uint32_t light = 0,
               std::uint32_t pixel = 7) {
     HitRecord r;
     r.sample = sample;
@@ -20,7 +20,7 @@ HitRecord ray(std::uint32_t sample, std::uint32_t path, HitRecordKind kind, std:
 std::uint32_t key(const HitRecord& r) { return r.kind_light; }
 
 TEST(RayTree, PreOrderWithShadowRaysUnderTheirHitAndSamplesApart) {
-    using K = HitRecordKind;
+    using K = RayKind;
     // Given out of order, as a wavefront records them (depth by depth, shadow rays after their pass).
     const std::vector<HitRecord> hits = {ray(0, 3, K::Refraction), ray(0, 2, K::Reflection), ray(0, 1, K::Shadow, 1),
                                          ray(0, 4, K::Reflection), ray(1, 1, K::Primary),   ray(0, 1, K::Primary),
@@ -43,8 +43,8 @@ TEST(RayTree, PreOrderWithShadowRaysUnderTheirHitAndSamplesApart) {
 }
 
 TEST(RayTree, WorkInPartsAddsUpAndWorkForNoRecordedRayIsShown) {
-    const std::vector<HitRecord> hits = {ray(0, 1, HitRecordKind::Primary), ray(0, 1, HitRecordKind::Shadow, 2)};
-    const std::uint32_t shadow = std::uint32_t(HitRecordKind::Shadow) | 2u << 8;
+    const std::vector<HitRecord> hits = {ray(0, 1, RayKind::Primary), ray(0, 1, RayKind::Shadow, 2)};
+    const std::uint32_t shadow = std::uint32_t(RayKind::Shadow) | 2u << 8;
     const std::vector<RayWork> work = {{0, 1, 0, 9, 0},       {0, 1, shadow, 30, 4}, {0, 1, shadow, 12, 1},
                                        {0, 2, 2, 5, 5}};   // a reflection the stage did not record
     const std::vector<RayTreeLine> lines = ray_tree(hits, work, 7);

@@ -13,7 +13,7 @@
 #include "../trace/offset.h"
 #include "../trace/shading.h"
 #include "exposure.h"
-#include "hit_record.h"
+#include "../trace/hit_record.h"
 #include "image.h"
 #include "stats.h"
 

@@ -39,10 +39,8 @@ nlohmann::json make_stats_json(const std::string& stage, const std::string& scen
     j["intersection_tests"] = s.counters.intersection_tests;
     // Where they come from: the rays of each kind made these (primary: the primary-hit pass of the rasterizing
     // stages, or the traced camera rays). They sum to intersection_tests.
-    j["intersection_tests_by_kind"] = {{"primary", s.counters.tests_by_kind[int(RayKind::Primary)]},
-                                       {"shadow", s.counters.tests_by_kind[int(RayKind::Shadow)]},
-                                       {"reflection", s.counters.tests_by_kind[int(RayKind::Reflection)]},
-                                       {"refraction", s.counters.tests_by_kind[int(RayKind::Refraction)]}};
+    for (int k = 0; k < kRayKinds; ++k)
+        j["intersection_tests_by_kind"][ray_kind_name(RayKind(k))] = s.counters.tests_by_kind[k];
     j["time_ms"] = {{"upload", s.upload_ms}, {"build", s.build_ms}, {"raster", s.raster_ms}, {"trace", s.trace_ms},
                     {"shade", s.shade_ms},   {"compile", s.compile_ms}, {"total", s.total_ms}};
     j["mrays_per_s"] = s.mrays_per_s();

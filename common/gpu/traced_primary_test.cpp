@@ -105,7 +105,7 @@ TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
         bounds.t_ulps = 64;
         const HitComparison c = compare_hits(gpu.hits, cpu, bounds);
         EXPECT_TRUE(c.passed(bounds)) << (coincident ? "coincident copies: " : "cutouts: ") << c.report(bounds);
-        EXPECT_GT(c.count_a[int(HitRecordKind::Shadow)], 100u);
+        EXPECT_GT(c.count_a[int(RayKind::Shadow)], 100u);
     }
 }
 

@@ -38,12 +38,12 @@ std::size_t env_storage_limit() {
     return std::size_t(v);
 }
 
-HitRecord make_record(const WavefrontRay& ray, int sample, HitRecordKind kind, std::int32_t triangle, float t) {
+HitRecord make_record(const WavefrontRay& ray, int sample, RayKind kind, std::int32_t triangle, float t) {
     HitRecord r;
     r.sample = std::uint32_t(sample);
     r.pixel = ray.pixel;
     r.path = ray.path;
-    r.kind_light = std::uint32_t(kind) | (kind == HitRecordKind::Shadow ? ray.light << 8 : 0u);
+    r.kind_light = std::uint32_t(kind) | (kind == RayKind::Shadow ? ray.light << 8 : 0u);
     r.triangle = triangle;
     r.t = t;
     for (int k = 0; k < 3; ++k) {
@@ -508,7 +508,7 @@ void Wavefront::run_collect(const Program& collect, Buffer& rays, std::size_t fi
 void Wavefront::record_primary_slots(std::size_t slots) {
     for (const WavefrontHit& h : hit_slots_.download<WavefrontHit>(slots))
         if (h.ray.pixel != kNoPixel && recorded(h.ray.pixel))
-            hit_records_.push_back(make_record(h.ray, samples_, HitRecordKind::Primary, h.triangle,
+            hit_records_.push_back(make_record(h.ray, samples_, RayKind::Primary, h.triangle,
                                                h.triangle >= 0 ? h.t : 0.0f));
 }
 
@@ -520,13 +520,13 @@ void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t c
         for (std::size_t i = 0; i < count; ++i)
             if (recorded(queue[i].pixel))
                 hit_records_.push_back(
-                    make_record(queue[i], samples_, HitRecordKind::Shadow, occluded[i] ? 1 : -1, 0.0f));
+                    make_record(queue[i], samples_, RayKind::Shadow, occluded[i] ? 1 : -1, 0.0f));
         return;
     }
     const std::vector<WavefrontTraceResult> results = results_.download<WavefrontTraceResult>(count);
     for (std::size_t i = 0; i < count; ++i) {
         if (!recorded(queue[i].pixel)) continue;
-        const auto kind = HitRecordKind(queue[i].depth_kind >> 16);
+        const auto kind = RayKind(queue[i].depth_kind >> 16);
         hit_records_.push_back(make_record(queue[i], samples_, kind, results[i].triangle,
                                            results[i].triangle >= 0 ? results[i].t : 0.0f));
     }

@@ -41,7 +41,7 @@
 
 #include <glm/glm.hpp>
 
-#include "../app/hit_record.h"
+#include "../trace/hit_record.h"
 #include "../app/image.h"
 #include "../app/progress.h"
 #include "../app/renderer.h"

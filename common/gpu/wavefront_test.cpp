@@ -146,7 +146,7 @@ TEST(OrderedQueues, PrimaryHitsInTileMortonOrderSpawnedRaysGroupedByKind) {
     ASSERT_GE(r.hits.size(), expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i) {
         EXPECT_EQ(r.hits[i].pixel, expected[i]) << "primary " << i;
-        EXPECT_EQ(r.hits[i].kind_light & 0xff, std::uint32_t(HitRecordKind::Primary));
+        EXPECT_EQ(r.hits[i].kind_light & 0xff, std::uint32_t(RayKind::Primary));
     }
     // After the primaries: runs of one kind (and light); within a run of reflections or refractions of one depth,
     // parents (path / 2) keep the primary order, so pixels of depth-1 rays follow the primary order.
@@ -174,21 +174,21 @@ TEST(HitRecords, EveryRayHasTheParentHitItsPathNames) {
     const FrameResult r = render_hybrid(scene, settings_for(scene, 64, 48), kBruteForce);
     std::set<std::pair<std::uint32_t, std::uint32_t>> hits;   // (pixel, path) of closest hits
     for (const HitRecord& h : r.hits)
-        if (HitRecordKind(h.kind_light & 0xff) != HitRecordKind::Shadow && h.triangle >= 0)
+        if (RayKind(h.kind_light & 0xff) != RayKind::Shadow && h.triangle >= 0)
             hits.insert({h.pixel, h.path});
     std::size_t checked = 0;
     for (const HitRecord& h : r.hits) {
-        const auto kind = HitRecordKind(h.kind_light & 0xff);
-        if (kind == HitRecordKind::Primary) {
+        const auto kind = RayKind(h.kind_light & 0xff);
+        if (kind == RayKind::Primary) {
             EXPECT_EQ(h.path, 1u);
             continue;
         }
-        const bool shadow = kind == HitRecordKind::Shadow;
+        const bool shadow = kind == RayKind::Shadow;
         const std::uint32_t parent = shadow ? h.path : h.path / 2;
         if (shadow) {
             EXPECT_LT(h.kind_light >> 8, scene.lights.size());
         } else {
-            EXPECT_EQ(h.path % 2, kind == HitRecordKind::Refraction ? 1u : 0u);
+            EXPECT_EQ(h.path % 2, kind == RayKind::Refraction ? 1u : 0u);
         }
         EXPECT_TRUE(hits.count({h.pixel, parent})) << "pixel " << h.pixel << " path " << h.path;
         ++checked;
@@ -359,7 +359,7 @@ TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
     expect_same_frame(unlimited, tiny, false);
     std::size_t primaries = 0;
     for (const HitRecord& h : unlimited.hits)
-        primaries += (h.kind_light & 0xff) == std::uint32_t(HitRecordKind::Primary);
+        primaries += (h.kind_light & 0xff) == std::uint32_t(RayKind::Primary);
     EXPECT_EQ(primaries, 64u * 48u);
 }
 

@@ -26,8 +26,20 @@ struct Hit {
     bool valid() const { return triangle >= 0; }
 };
 
-// The kinds of rays a Whitted tracer casts, counted separately in the stats.
-enum class RayKind : int { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
+// The kinds of rays a Whitted tracer casts, counted separately in the stats, recorded in hit records
+// (hit_record.h) and, as WF_KIND_*, in the GPU stages' ray queues: one enum, one set of names.
+enum class RayKind : std::uint32_t { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
+constexpr int kRayKinds = 4;
+// "primary", "shadow", "reflection", "refraction": the keys of the stats JSON and the names in printouts.
+constexpr const char* ray_kind_name(RayKind kind) {
+    switch (kind) {
+    case RayKind::Primary: return "primary";
+    case RayKind::Shadow: return "shadow";
+    case RayKind::Reflection: return "reflection";
+    case RayKind::Refraction: return "refraction";
+    }
+    return "unknown";
+}
 
 // Counters every stage reports: rays of each kind and ray/triangle intersection tests, in all and by the kind of ray
 // that made them (indexed by RayKind). Each stage fills the total and the kinds from separate adds, so that the kinds

@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "../app/hit_record.h"
+#include "hit_record.h"
 #include "../scene/effects.h"
 #include "../scene/scene.h"
 #include "absorption.h"
@@ -44,7 +44,7 @@ struct HitLog {
     std::vector<RayWork>* work = nullptr;
 
     template <class T>
-    void add(std::uint32_t path, HitRecordKind kind, std::uint32_t light, const Ray<T>& ray, std::int32_t triangle,
+    void add(std::uint32_t path, RayKind kind, std::uint32_t light, const Ray<T>& ray, std::int32_t triangle,
              float t, std::uint64_t tests) const {
         if (work) work->push_back(RayWork{sample, path, std::uint32_t(kind) | (light << 8), tests, 0});
         if (!records) return;
@@ -124,9 +124,9 @@ public:
         const std::uint64_t tests = counters.intersection_tests - tests_before;
         counters.tests_by_kind[int(ray_kind)] += tests;
         if (log) {
-            const HitRecordKind kind = path == 1   ? HitRecordKind::Primary
-                                       : path & 1u ? HitRecordKind::Refraction
-                                                   : HitRecordKind::Reflection;
+            const RayKind kind = path == 1   ? RayKind::Primary
+                                       : path & 1u ? RayKind::Refraction
+                                                   : RayKind::Reflection;
             log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f, tests);
         }
         if (!found) return miss_radiance(scene_, glm::vec3(ray.direction));   // environment.h
@@ -171,7 +171,7 @@ public:
                 const std::uint64_t shadow_tests = counters.intersection_tests - shadow_tests_before;
                 counters.tests_by_kind[int(RayKind::Shadow)] += shadow_tests;
                 if (log)
-                    log->add(path, HitRecordKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f, shadow_tests);
+                    log->add(path, RayKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f, shadow_tests);
                 if (occluded) continue;
             }
             color += shade_light(s, incidence, n, to_light, -d);

@@ -38,7 +38,7 @@
 
 // A queued ray (64 bytes, std430; WavefrontRay in wavefront.h). For shadow rays `weight` is the light's whole
 // contribution to the pixel (path weight times the unshadowed light), added when nothing blocks the ray.
-// `path` and `light` name the ray in the ray tree (common/app/hit_record.h): path 1 is the primary ray, 2p and 2p + 1
+// `path` and `light` name the ray in the ray tree (common/trace/hit_record.h): path 1 is the primary ray, 2p and 2p + 1
 // the reflection and refraction children of path p (meaningful up to depth 30); a shadow ray has its parent hit's
 // path and the index of its light.
 struct WavefrontRay {

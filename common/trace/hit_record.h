@@ -11,15 +11,16 @@
 
 #include <cstdint>
 
+#include "ray.h"   // RayKind, the kind in kind_light's low byte
+
 namespace rt {
 
-enum class HitRecordKind : std::uint32_t { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
 
 struct HitRecord {
     std::uint32_t sample = 0;      // sample index within the pixel (--spp), 0-based
     std::uint32_t pixel = 0;       // y * width + x
     std::uint32_t path = 1;        // see above
-    std::uint32_t kind_light = 0;  // HitRecordKind in bits 0-7, light index (shadow rays) in bits 8-31
+    std::uint32_t kind_light = 0;  // RayKind in bits 0-7, light index (shadow rays) in bits 8-31
     std::int32_t triangle = -1;    // closest hit's triangle id, -1 for a miss; shadow rays: 1 occluded, -1 not
     float t = 0.0f;                // closest hit's distance along the ray (0 for misses and shadow rays)
     float origin[3] = {0, 0, 0};   // the ray as traced, to tell "same ray, different hit" from "different ray"
