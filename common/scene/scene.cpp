@@ -360,10 +360,12 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
         scene.default_camera = true;
     }
 
-    // No light in the file (most glTF files): the key light, or the headlight when the camera is inside the bounds,
-    // where the key light would stand outside the walls of an interior and light nothing the camera sees.
+    // No light in the file (most glTF files): the key light goes with the auto-framed camera, which it was placed
+    // for (both look at the bounds from the front, above); a camera of the file's own may look from anywhere (from
+    // below, into a box, from inside a building), where a light outside the bounds lights nothing it sees: the
+    // headlight goes with it.
     if (scene.lights.empty() && options.add_default_light) {
-        scene.default_headlight = strictly_inside(scene.bounds, scene.camera.position);
+        scene.default_headlight = !scene.default_camera;
         scene.lights.push_back(scene.default_headlight ? default_headlight(scene.bounds, scene.camera)
                                                        : default_light(scene.bounds));
         scene.default_light = true;
@@ -428,10 +430,11 @@ bool strictly_inside(const Bounds& bounds, const glm::vec3& p) {
 
 // The headlight (docs/shading.md, "Defaults"): a white point light at the camera, as a viewer's headlight, so
 // everything the camera sees directly is lit (its shadow rays run back along the camera rays) whatever walls stand
-// around it. Its intensity is pi * d^2 with d the distance from the camera to where its view axis leaves the bounds
-// (the slab method: the smallest of the three exit distances), so a white Lambertian surface facing the camera there
-// shades to 1, as under the key light; nearer surfaces are brighter (1/d^2). A camera inside empty or flat bounds
-// (d not positive and finite) uses half the diagonal, or 1.
+// around it. Its intensity is pi * d^2, so a white Lambertian surface facing the camera at distance d shades to 1,
+// as under the key light; nearer surfaces are brighter (1/d^2). d: for a camera strictly inside the bounds, the
+// distance to where its view axis leaves them (the slab method: the smallest of the three exit distances); for one
+// outside, the distance to the bounds' centre. Empty or flat bounds (d not positive and finite) use half the
+// diagonal, or 1.
 Light default_headlight(const Bounds& bounds, const Camera& camera) {
     float exit = std::numeric_limits<float>::infinity();
     for (int axis = 0; axis < 3; ++axis) {
@@ -439,7 +442,9 @@ Light default_headlight(const Bounds& bounds, const Camera& camera) {
         if (f > 0.0f) exit = std::min(exit, (bounds.hi[axis] - camera.position[axis]) / f);
         if (f < 0.0f) exit = std::min(exit, (bounds.lo[axis] - camera.position[axis]) / f);
     }
-    float distance = exit;
+    float distance = strictly_inside(bounds, camera.position) ? exit
+                     : bounds.empty()                         ? 0.0f
+                                                              : glm::length(bounds.center() - camera.position);
     if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 0.5f * bounds.diagonal();
     if (!(distance > 0.0f) || !std::isfinite(distance)) distance = 1.0f;
     Light light;

@@ -237,7 +237,7 @@ struct Scene {
     // Documented defaults (docs/shading.md) applied because the asset had none; reported in the stats.
     bool default_camera = false;
     bool default_light = false;
-    bool default_headlight = false;     // the default light is the headlight (the camera is inside the bounds)
+    bool default_headlight = false;     // the default light is the headlight (the camera is the file's own)
     bool default_world = false;         // environment is the default world (set by the driver)
     AmbientModel ambient = AmbientModel::Constant;
     // The asset has animations: a later time is another frame (the viewer keeps rendering; a still one idles).
@@ -263,7 +263,7 @@ struct FlattenOptions {
 Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_t* dropped_triangles = nullptr);
 
 // The auto-framed camera and the lights used when an asset has none (docs/shading.md, "Defaults"): the key light
-// when the camera is outside the bounds, the headlight when it is inside (an interior).
+// with the auto-framed camera, the headlight with a camera of the file's own.
 Camera default_camera(const Bounds& bounds, float aspect);
 Light default_light(const Bounds& bounds);
 Light default_headlight(const Bounds& bounds, const Camera& camera);

@@ -251,15 +251,23 @@ TEST(Flatten, CameraInsideTheBoundsGetsTheHeadlightNormalisedWhereTheViewAxisLea
     EXPECT_EQ(l.name, "default headlight");
 }
 
-TEST(Flatten, CameraOutsideOrOnTheBoundsKeepsTheKeyLight) {
+TEST(Flatten, AFileCameraOutsideTheBoundsGetsTheHeadlightNormalisedAtTheirCentre) {
+    // From outside, on a face, on an edge: wherever the file's camera stands, the light is at it.
     for (const glm::vec3 eye : {glm::vec3(0, 1.5f, 6), glm::vec3(0, 1.5f, 2), glm::vec3(0, 3, 0)}) {
         const Scene s = flatten(room_with_camera(eye), {});
         ASSERT_TRUE(s.default_light);
-        EXPECT_FALSE(s.default_headlight) << eye.x << "," << eye.y << "," << eye.z;
-        EXPECT_EQ(s.lights[0].name, "default light");
+        EXPECT_TRUE(s.default_headlight) << eye.x << "," << eye.y << "," << eye.z;
+        EXPECT_EQ(s.lights[0].position, s.camera.position);
+        const float d = glm::length(s.bounds.center() - s.camera.position);
+        EXPECT_NEAR(s.lights[0].intensity, 3.14159265f * d * d, 1e-4f * d * d);
     }
-    // An auto-framed camera is always outside.
-    EXPECT_FALSE(flatten(single(triangle()), {}).default_headlight);
+}
+
+TEST(Flatten, TheAutoFramedCameraGetsTheKeyLight) {
+    const Scene s = flatten(single(triangle()), {});
+    ASSERT_TRUE(s.default_camera);
+    EXPECT_FALSE(s.default_headlight);
+    EXPECT_EQ(s.lights[0].name, "default light");
 }
 
 TEST(DefaultHeadlight, FlatOrEmptyBoundsAndAnAxisAlongAFaceGiveAFiniteLight) {
