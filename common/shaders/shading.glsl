@@ -176,7 +176,7 @@ SurfaceCoefficients surface_coefficients(Material m, SurfaceTexels tex) {
     precise float r0 = (s.ior - 1.0) / (s.ior + 1.0);
     precise vec3 f0 = r0 * r0 * m.specular * m.specular_color;
     s.f0_dielectric = min(vec3(1.0), f0);
-    precise vec3 diffuse = s.base * s.dielectric * (1.0 - s.transmission);
+    precise vec3 diffuse = s.base * s.dielectric * (1.0 - s.transmission) + s.base * (metallic * (1.0 - s.smoothness));
     s.diffuse = diffuse;
     precise vec3 mirror = s.base * metallic * s.smoothness;
     s.mirror = mirror;

@@ -77,7 +77,10 @@ SurfaceCoefficients surface_coefficients(const Material& m, const SurfaceTexels&
     // Dielectric reflectance at normal incidence, scaled by KHR_materials_specular.
     const float r0 = (s.ior - 1.0f) / (s.ior + 1.0f);
     s.f0_dielectric = glm::min(glm::vec3(1.0f), r0 * r0 * m.specular * m.specular_color);
-    s.diffuse = s.base * s.dielectric * (1.0f - s.transmission);
+    // Lambertian: the dielectric's diffuse part, plus the part of a metal's reflectance too rough for a mirror ray
+    // (1 - smoothness): Whitted traces no glossy lobe, so a rough metal reflects its colour diffusely instead of not at
+    // all (docs/shading.md). For metallic 0 the second term is 0 and kd is what it always was, to the bit.
+    s.diffuse = s.base * s.dielectric * (1.0f - s.transmission) + s.base * (metallic * (1.0f - s.smoothness));
     s.mirror = s.base * metallic * s.smoothness;
     // Highlight: Blinn-Phong lobe whose exponent follows roughness (alpha = roughness^2, exponent 2/alpha^2 - 2);
     // only smooth surfaces get one, weighted by their reflectance at normal incidence.

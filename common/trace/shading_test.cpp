@@ -86,11 +86,26 @@ TEST(Refraction, NormalIncidenceGoesStraightThrough) {
     EXPECT_NEAR(out.z, -1.0f, 1e-7f);
 }
 
-TEST(Materials, DefaultGltfMaterialIsAMatteMetalWithoutMirror) {
+// glTF's default material is a fully rough metal: no mirror ray, and its reflectance, which Whitted cannot trace as
+// a glossy lobe, is diffuse (so a file without materials does not render black).
+TEST(Materials, DefaultGltfMaterialIsARoughMetalThatReflectsItsColourDiffusely) {
     const Material m;   // glTF defaults: metallic 1, roughness 1
     const SurfaceCoefficients s = surface_coefficients(m, glm::vec4(1.0f));
     EXPECT_EQ(s.smoothness, 0.0f);
-    EXPECT_EQ(s.diffuse, glm::vec3(0.0f));
+    EXPECT_EQ(s.mirror, glm::vec3(0.0f));
+    EXPECT_EQ(s.diffuse, glm::vec3(1.0f));
+}
+
+TEST(Materials, AMetalSplitsItsColourBetweenMirrorAndDiffuseBySmoothness) {
+    Material m;
+    m.base_color = glm::vec4(0.9f, 0.6f, 0.2f, 1.0f);
+    for (float roughness : {0.0f, 0.3f, 0.7f, 1.0f}) {
+        m.roughness = roughness;
+        const SurfaceCoefficients s = surface_coefficients(m, glm::vec4(1.0f));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(s.mirror[c] + s.diffuse[c], m.base_color[c], 1e-6f) << roughness;
+    }
+    m.roughness = 0.0f;
+    EXPECT_EQ(surface_coefficients(m, glm::vec4(1.0f)).diffuse, glm::vec3(0.0f));   // a perfect mirror stays one
 }
 
 TEST(Materials, GlassSplitsIntoFresnelReflectionAndRefraction) {
