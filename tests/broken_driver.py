@@ -8,44 +8,37 @@ leave the file that was at --out untouched and leave no temporary.
 
 usage: broken_driver.py --bin-dir DIR --stage STAGE --work DIR
 """
-import argparse
 import os
-import shutil
 import subprocess
 import sys
+
+import stage_script
 
 PREVIOUS = b"the user's previous image\n"
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--bin-dir", required=True)
-    p.add_argument("--stage", required=True)
-    p.add_argument("--work", required=True)
-    a = p.parse_args()
-    exe = os.path.abspath(os.path.join(a.bin_dir, a.stage))
-    shutil.rmtree(a.work, ignore_errors=True)
-    os.makedirs(a.work)
+    exe, work, stage = stage_script.setup(__doc__)
     cases = [(f"GALLIUM_DRIVER=bogus --backend {b}", {"GALLIUM_DRIVER": "bogus"}, b) for b in ("auto", "egl", "osmesa")]
     cases.append(("missing libOSMesa --backend osmesa", {"RT_OSMESA_LIBRARY": "/nonexistent/libOSMesa.so.8"}, "osmesa"))
     failed = 0
     for name, env, backend in cases:
-        target = os.path.join(a.work, "o.png")
+        target = os.path.join(work, "o.png")
         with open(target, "wb") as f:
             f.write(PREVIOUS)
         r = subprocess.run([exe, "--scene", "builtin:whitted", "--width", "16", "--height", "12", "--backend", backend,
-                            "--out", "o.png", "--quiet"], cwd=a.work, env=dict(os.environ, **env),
+                            "--out", "o.png", "--quiet"], cwd=work, env=dict(os.environ, **env),
                            capture_output=True, text=True, timeout=120)
         problems = []
         if r.returncode != 1:
             problems.append(f"exit {r.returncode}, expected 1")
         lines = r.stderr.splitlines()
-        if len(lines) != 1 or not lines[0].startswith(f"{a.stage}: error: "):
+        if len(lines) != 1 or not lines[0].startswith(f"{stage}: error: "):
             problems.append(f"not one error line: {r.stderr!r}")
         with open(target, "rb") as f:
             if f.read() != PREVIOUS:
                 problems.append("o.png was changed")
-        left = sorted(set(os.listdir(a.work)) - {"o.png"})
+        left = sorted(set(os.listdir(work)) - {"o.png"})
         if left:
             problems.append(f"left behind: {left}")
         print(("FAIL " if problems else "ok   ") + name + (": " + "; ".join(problems) if problems else ": " + lines[0]))

@@ -13,13 +13,13 @@ be left in the folder (no temporary).
 
 usage: write_failures.py --bin-dir DIR --stage STAGE --work DIR
 """
-import argparse
 import os
 import resource
-import shutil
 import signal
 import subprocess
 import sys
+
+import stage_script
 
 CASES = [
     (["--out", "o.png"], "o.png"),
@@ -95,21 +95,14 @@ def run_all(stage, exe, folder, mode):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--bin-dir", required=True)
-    p.add_argument("--stage", required=True)
-    p.add_argument("--work", required=True)
-    a = p.parse_args()
-    exe = os.path.abspath(os.path.join(a.bin_dir, a.stage))
-    shutil.rmtree(a.work, ignore_errors=True)
-    os.makedirs(a.work)
+    exe, work, stage = stage_script.setup(__doc__)
 
     ok = True
-    folder = os.path.join(a.work, "fsize")
+    folder = os.path.join(work, "fsize")
     os.makedirs(folder)
-    ok &= run_all(a.stage, exe, folder, "fsize")
+    ok &= run_all(stage, exe, folder, "fsize")
 
-    folder = os.path.join(a.work, "tmpfs")
+    folder = os.path.join(work, "tmpfs")
     os.makedirs(folder)
     if os.geteuid() != 0:
         print("skipped tmpfs: not root (mounting a small tmpfs needs root; the fsize cases above ran)")
@@ -119,7 +112,7 @@ def main():
             print(f"skipped tmpfs: mount failed ({m.stderr.strip()}); the fsize cases above ran")
         else:
             try:
-                ok &= run_all(a.stage, exe, folder, "tmpfs")
+                ok &= run_all(stage, exe, folder, "tmpfs")
             finally:
                 subprocess.run(["umount", folder])
     return 0 if ok else 1
