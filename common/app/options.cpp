@@ -100,6 +100,25 @@ CLI::Validator whole_number_of(const std::vector<long long>& allowed) {
         "ONE OF " + list);
 }
 
+namespace {
+
+// A validator from a parser that throws std::invalid_argument: its message is the reason the value is refused.
+template <class Parse>
+CLI::Validator parsed_by(Parse parse, const std::string& name) {
+    return CLI::Validator(
+        [parse](std::string& text) {
+            try {
+                parse(text);
+            } catch (const std::invalid_argument& e) {
+                return std::string(e.what());
+            }
+            return std::string();
+        },
+        name);
+}
+
+}  // namespace
+
 glm::ivec2 parse_pixel(const std::string& text) {
     const std::size_t comma = text.find(',');
     if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos)
@@ -168,16 +187,7 @@ void add_shared_options(CLI::App& app, Options& o) {
     app.add_option_function<std::string>(
            "--pixel", [&o](const std::string& text) { o.pixel = parse_pixel(text); },
            "X,Y: print that pixel's ray tree (each ray, its hit and the tests it cost); 0,0 is the top left")
-        ->check(CLI::Validator(
-            [](std::string& text) {
-                try {
-                    parse_pixel(text);
-                } catch (const std::invalid_argument& e) {
-                    return std::string(e.what());
-                }
-                return std::string();
-            },
-            "X,Y"));
+        ->check(parsed_by(parse_pixel, "X,Y"));
     add_enum(app, "--heatmap-scale", o.heatmap_scale, {{"linear", HeatmapScale::Linear}, {"log", HeatmapScale::Log}},
              "Colour scale of --heatmap");
     app.add_option("--heatmap-max", o.heatmap_max,
@@ -227,16 +237,7 @@ void add_shared_options(CLI::App& app, Options& o) {
            "--background", [&o](const std::string& text) { o.background = parse_background(text); },
            "R,G,B or black: linear radiance of rays that leave the scene, instead of the scene's (glTF files: the "
            "default world, a grey studio)")
-        ->check(CLI::Validator(
-            [](std::string& text) {
-                try {
-                    parse_background(text);
-                } catch (const std::invalid_argument& e) {
-                    return std::string(e.what());
-                }
-                return std::string();
-            },
-            "R,G,B"));
+        ->check(parsed_by(parse_background, "R,G,B"));
     app.add_option_function<std::string>(
            "--ambient",
            [&o](const std::string& word) {
