@@ -7,8 +7,9 @@
 #                                  " 4" and its bounds: runs or is refused in one line naming the option, never a
 #                                  crash (tests/hostile_options.py). The options 01_naive has are parsed by shared
 #                                  code and tested there once; the GPU stages test their own.
-#   gpu.<stage>.broken_driver      GALLIUM_DRIVER=bogus on every backend and a missing libOSMesa: one error line,
-#                                  exit 1, nothing changed or left behind (tests/broken_driver.py).
+#   gpu.<stage>.broken_driver      GALLIUM_DRIVER=bogus on every backend, a missing libOSMesa, a missing libEGL and
+#                                  both: one error line, exit 1, nothing changed or left behind; no libEGL or libOSMesa
+#                                  among the libraries loaded at start (tests/broken_driver.py).
 if(RT_PYTHON3)
   foreach(stage IN LISTS RT_STAGES)
     add_test(NAME writes.${stage}.full_disk

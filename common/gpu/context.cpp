@@ -3,6 +3,8 @@
 // context_glfw.cpp.
 #include "context.h"
 
+#include <dlfcn.h>
+
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
@@ -45,6 +47,14 @@ void GpuContext::Impl::finish_setup(bool debug) {
         throw std::runtime_error(backend + ": got OpenGL " + version + " (" + renderer + "); 4.5 core is required");
     if (debug) enable_gl_debug_output();
     while (glGetError() != GL_NO_ERROR) {}
+}
+
+void* open_backend_library(const std::string& who, const std::string& name) {
+    if (void* lib = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL)) return lib;
+    const char* error = dlerror();
+    std::string why = error ? error : "dlopen failed";
+    if (why.rfind(name + ": ", 0) == 0) why.erase(0, name.size() + 2);   // "NAME: cannot open shared object file"
+    throw std::runtime_error(who + ": cannot load " + name + ": " + why);
 }
 
 bool GpuContext::Impl::present(unsigned, int, int) {

@@ -41,6 +41,10 @@ private:
     void load_gl();
 };
 
+// Opens a backend's library (dlopen, RTLD_NOW | RTLD_LOCAL; it stays loaded). When it cannot, throws "WHO: cannot load
+// NAME: why" (dlerror's reason without the file name it repeats).
+void* open_backend_library(const std::string& who, const std::string& name);
+
 // Each creates a context, makes it current, and sets `backend` (and `fallback_log`); throws std::runtime_error
 // saying why it failed, after releasing what it had made.
 std::unique_ptr<GpuContext::Impl> create_egl_context(bool debug);

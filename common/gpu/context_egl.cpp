@@ -1,14 +1,15 @@
 // The EGL backend: a hardware device through EGL_EXT_platform_device when there is one, else Mesa's surfaceless
 // platform (llvmpipe). Contexts are surfaceless: no default framebuffer, the stages render into FBOs and SSBOs.
+// libEGL is dlopen'ed the first time EGL is chosen and its functions reach us through glad's EGL loader, so the
+// stages do not link it: on a machine without libEGL they still start, and say so in one line (or run on OSMesa).
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <map>
 #include <stdexcept>
 
-#define EGL_NO_X11 1
-#define MESA_EGL_NO_X11_HEADERS 1
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
+#include <glad/egl.h>
 
 #include "context_backend.h"
 
@@ -22,6 +23,36 @@ bool has_extension(const char* list, const char* name) {
     for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
         if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
     return false;
+}
+
+// Opens libEGL once per process (it stays loaded, as libOSMesa does) and fills glad's EGL function pointers: a
+// function libEGL exports by name comes from dlsym, an extension's (eglQueryDevicesEXT) from eglGetProcAddress.
+// RT_EGL_LIBRARY names another libEGL (the tests name a missing one). Throws saying why it cannot.
+void load_egl() {
+    static void* lib = nullptr;
+    if (lib) return;
+    const char* override = std::getenv("RT_EGL_LIBRARY");
+    const std::string name = override && *override ? override : "libEGL.so.1";
+    void* opened = open_backend_library("EGL", name);
+    // glad reads the EGL version and extensions from eglGetDisplay(EGL_DEFAULT_DISPLAY) when given no display, and
+    // an uninitialised display answers neither (glad would then take EGL 1.0 and skip eglGetPlatformDisplay). So
+    // while glad loads, eglGetDisplay answers EGL_NO_DISPLAY: glad then asks EGL_NO_DISPLAY, which in EGL 1.5 gives
+    // the client's version and client extensions, the ones choosing a platform display needs. It is put back after.
+    auto load = [](void* handle, const char* fn) -> GLADapiproc {
+        if (std::strcmp(fn, "eglGetDisplay") == 0)
+            return reinterpret_cast<GLADapiproc>(+[](EGLNativeDisplayType) { return EGL_NO_DISPLAY; });
+        if (void* p = dlsym(handle, fn)) return reinterpret_cast<GLADapiproc>(p);
+        auto get_proc = reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(handle, "eglGetProcAddress"));
+        return get_proc ? reinterpret_cast<GLADapiproc>(get_proc(fn)) : nullptr;
+    };
+    const int version = gladLoadEGLUserPtr(EGL_NO_DISPLAY, load, opened);
+    eglGetDisplay = reinterpret_cast<PFNEGLGETDISPLAYPROC>(dlsym(opened, "eglGetDisplay"));
+    if (!version || !eglGetPlatformDisplay || !eglInitialize || !eglCreateContext || !eglMakeCurrent ||
+        !eglGetProcAddress) {
+        dlclose(opened);
+        throw std::runtime_error("EGL: " + name + " is not an EGL 1.5 library (eglGetPlatformDisplay and friends)");
+    }
+    lib = opened;
 }
 
 std::string egl_error_string(EGLint e) {
@@ -121,6 +152,7 @@ std::unique_ptr<GpuContext::Impl> create_egl_context(bool debug) {
     // Mesa's EGL prints its own warnings ("libEGL warning: egl: failed to create dri2 screen") before failing; the
     // failure is reported in our one error line, so keep Mesa to fatal messages unless the user set a level.
     setenv("EGL_LOG_LEVEL", "fatal", /*overwrite=*/0);
+    load_egl();
     auto impl = std::make_unique<EglContext>();
     std::string log;
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);   // client extensions (EGL_EXT_client_extensions)

@@ -92,15 +92,14 @@ std::unique_ptr<GpuContext::Impl> create_osmesa_context(bool debug) {
     // RT_OSMESA_LIBRARY names another libOSMesa (a Mesa built by hand; the tests name a missing one).
     const char* override = std::getenv("RT_OSMESA_LIBRARY");
     const std::string name = override && *override ? override : "libOSMesa.so.8";
-    void* lib = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!lib) throw std::runtime_error("OSMesa: dlopen(" + name + "): " + dlerror());
+    void* lib = open_backend_library("OSMesa", name);
     auto impl = std::make_unique<OsmesaContext>();
     auto create = reinterpret_cast<osmesa::CreateContextAttribsFn>(dlsym(lib, "OSMesaCreateContextAttribs"));
     impl->make_current_fn = reinterpret_cast<osmesa::MakeCurrentFn>(dlsym(lib, "OSMesaMakeCurrent"));
     impl->destroy = reinterpret_cast<osmesa::DestroyContextFn>(dlsym(lib, "OSMesaDestroyContext"));
     impl->get_proc = reinterpret_cast<osmesa::GetProcAddressFn>(dlsym(lib, "OSMesaGetProcAddress"));
     if (!create || !impl->make_current_fn || !impl->destroy || !impl->get_proc)
-        throw std::runtime_error("OSMesa: libOSMesa.so.8 lacks OSMesaCreateContextAttribs and friends");
+        throw std::runtime_error("OSMesa: " + name + " lacks OSMesaCreateContextAttribs and friends");
     const int attribs[] = {osmesa::kFormat, int(osmesa::kRgba), osmesa::kDepthBits, 24,
                            osmesa::kProfile, osmesa::kCoreProfile, osmesa::kMajor, 4, osmesa::kMinor, 5, 0};
     probe_in_child(create, impl->make_current_fn, attribs);
