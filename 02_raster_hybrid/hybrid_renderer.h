@@ -24,7 +24,7 @@ protected:
     // No structure to build: brute force. Each sample rasterizes the G-buffer, then the pipeline shades and traces.
     void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
     bool rasterizes_primary_rays() const override { return true; }
-    std::vector<std::string> stage_programs() const override { return {"raster/primary_hits.comp"}; }
+    std::vector<std::string> stage_programs() const override { return {"common/shaders/raster/primary_hits.comp"}; }
 
 private:
     gpu::BruteForceTraversal brute_force_;

@@ -24,10 +24,10 @@ void check_fits(std::size_t bytes, std::size_t limit, const std::string& what) {
 }  // namespace
 
 GpuGrid::GpuGrid()
-    : chunks_(gpu::Program::compute("03_uniform_grid/grid_chunks.comp")),
-      count_(gpu::Program::compute("03_uniform_grid/grid_count.comp")),
-      write_(gpu::Program::compute("03_uniform_grid/grid_write.comp")),
-      ranges_(gpu::Program::compute("03_uniform_grid/grid_ranges.comp")),
+    : chunks_(gpu::Program::compute("03_uniform_grid/shaders/grid_chunks.comp")),
+      count_(gpu::Program::compute("03_uniform_grid/shaders/grid_count.comp")),
+      write_(gpu::Program::compute("03_uniform_grid/shaders/grid_write.comp")),
+      ranges_(gpu::Program::compute("03_uniform_grid/shaders/grid_ranges.comp")),
       total_(sizeof(std::uint32_t)) {}
 
 void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {

@@ -85,7 +85,7 @@ constexpr std::size_t kMaxSteps = 96;
 constexpr std::size_t kOutStride = 1 + 3 * kMaxSteps;
 
 const char* kWalkBody = R"(
-#include "03_uniform_grid/grid_walk.glsl"
+#include "03_uniform_grid/shaders/grid_walk.glsl"
 void test_main() {
     const Ray r = make_ray(in_vec3(0), in_vec3(3), in_f(6));
     GridWalk w;
@@ -213,7 +213,7 @@ TEST(GridRenderer, ImageAndHitsEqualStage02s) {
 // Traced primary rays: the same frame as brute force tracing them (common/brute_force.glsl through the same pipeline).
 class TracedBruteForce : public gpu::GpuStage {
 public:
-    TracedBruteForce() : GpuStage({"common/brute_force.glsl", {}, {}}) {}
+    TracedBruteForce() : GpuStage({"common/shaders/brute_force.glsl", {}, {}}) {}
 
 protected:
     void render_sample(const Scene&, const RenderSettings&, glm::vec2 offset) override {

@@ -25,7 +25,7 @@ glm::ivec3 parse_grid_res(const std::string& text) {
 }
 
 GridRenderer::GridRenderer()
-    : GpuStage({"03_uniform_grid/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }, {}, {}, "grid cells"}) {}
+    : GpuStage({"03_uniform_grid/shaders/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }, {}, {}, "grid cells"}) {}
 GridRenderer::~GridRenderer() = default;
 
 void GridRenderer::add_options(CLI::App& app) {
@@ -97,10 +97,10 @@ void GridRenderer::render_sample(const Scene& scene, const RenderSettings& setti
 
 std::vector<std::string> GridRenderer::stage_programs() const {
     std::vector<std::string> programs;
-    if (!grid_options.trace_primary) programs.push_back("raster/primary_hits.comp");
+    if (!grid_options.trace_primary) programs.push_back("common/shaders/raster/primary_hits.comp");
     if (built_)
         for (const char* p : {"grid_count.comp", "grid_write.comp", "grid_ranges.comp"})
-            programs.push_back(std::string("03_uniform_grid/") + p);
+            programs.push_back(std::string("03_uniform_grid/shaders/") + p);
     return programs;
 }
 

@@ -23,7 +23,7 @@ void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<Obje
     object_nodes_ = 0;
     object_level_first_.clear();
     object_level_count_.clear();
-    if (!spheres_) spheres_ = Program::compute("04_ray_hierarchy/rh_spheres.comp");
+    if (!spheres_) spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp");
     order_.reserve(4);   // bound by every expansion, read only with --objects tree
     objects_buf_.reserve(sizeof(ObjectNode));
     spheres_buf_.reserve(std::max<std::size_t>(triangles_, 1) * sizeof(glm::vec4));
@@ -58,7 +58,7 @@ void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<Obje
 
 // object_tree.h: Morton codes of the spheres' centres, sorted; clusters; levels up to a single root.
 void GpuRayHierarchy::build_tree(const Bounds& bounds) {
-    if (!tree_) tree_ = Program::compute("04_ray_hierarchy/ot_build.comp");
+    if (!tree_) tree_ = Program::compute("04_ray_hierarchy/shaders/ot_build.comp");
     if (!radix_) radix_ = std::make_unique<gpu::RadixSort>();
     const std::uint32_t n = std::uint32_t(triangles_);
     keys_.reserve(std::size_t(n) * 4);

@@ -13,7 +13,7 @@ using gpu::Program;
 constexpr std::size_t kMaxCapacity = std::size_t(1) << 20;   // entries per buffer: 16 MiB of (node, triangle) pairs
 constexpr std::uint32_t kTriangleFlag = 0x80000000u;          // rh_common.glsl: RH_TRIANGLE_FLAG
 constexpr std::uint32_t kMaxRayIndex = 1u << 27;              // RH_RAY_INDEX_BITS
-constexpr int kMaxRayLevels = 32;                             // rh_test.comp's level tables
+constexpr int kMaxRayLevels = 32;                             // rh_cull.comp's level tables
 // rh_info.glsl
 constexpr std::uint32_t kInfoWords = 224, kInfoExact = 10, kInfoObjectIn = 12, kInfoObjectOut = 14,
                         kInfoLevelIn = 16, kInfoLevelOut = 80, kInfoLeafPairs = 144, kInfoStepCount = 160, kInfoGroupFirst = 8;
@@ -44,9 +44,9 @@ std::uint64_t HierarchyKindStats::node_tests() const {
 
 std::vector<std::string> GpuRayHierarchy::program_names() {
     std::vector<std::string> names;
-    for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_build.comp", "rh_test.comp",
+    for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_build.comp", "rh_cull.comp",
                           "rh_expand.comp", "rh_leaf.comp", "rh_fold.comp", "rh_args.comp"})
-        names.push_back(std::string("04_ray_hierarchy/") + p);
+        names.push_back(std::string("04_ray_hierarchy/shaders/") + p);
     return names;
 }
 
@@ -59,18 +59,18 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     for (const auto& [name, value] : wavefront.defines()) key += name + "=" + value + ";";
     if (key == key_ && spheres_) return;
     const gpu::ShaderDefines& d = wavefront.defines();
-    spheres_ = Program::compute("04_ray_hierarchy/rh_spheres.comp", d);
-    tree_ = Program::compute("04_ray_hierarchy/ot_build.comp", d);
-    build_ = Program::compute("04_ray_hierarchy/rh_build.comp", d);
-    heads_ = Program::compute("04_ray_hierarchy/rh_heads.comp", d);
-    test_ = Program::compute("04_ray_hierarchy/rh_test.comp", d);
-    expand_ = Program::compute("04_ray_hierarchy/rh_expand.comp", d);
-    leaf_closest_ = Program::compute("04_ray_hierarchy/rh_leaf.comp", d);
+    spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", d);
+    tree_ = Program::compute("04_ray_hierarchy/shaders/ot_build.comp", d);
+    build_ = Program::compute("04_ray_hierarchy/shaders/rh_build.comp", d);
+    heads_ = Program::compute("04_ray_hierarchy/shaders/rh_heads.comp", d);
+    cull_ = Program::compute("04_ray_hierarchy/shaders/rh_cull.comp", d);
+    expand_ = Program::compute("04_ray_hierarchy/shaders/rh_expand.comp", d);
+    leaf_closest_ = Program::compute("04_ray_hierarchy/shaders/rh_leaf.comp", d);
     gpu::ShaderDefines shadow = d;
     shadow.emplace("RH_SHADOW", "1");
-    leaf_shadow_ = Program::compute("04_ray_hierarchy/rh_leaf.comp", shadow);
-    fold_ = Program::compute("04_ray_hierarchy/rh_fold.comp", d);
-    args_pass_ = Program::compute("04_ray_hierarchy/rh_args.comp", d);
+    leaf_shadow_ = Program::compute("04_ray_hierarchy/shaders/rh_leaf.comp", shadow);
+    fold_ = Program::compute("04_ray_hierarchy/shaders/rh_fold.comp", d);
+    args_pass_ = Program::compute("04_ray_hierarchy/shaders/rh_args.comp", d);
     key_ = key;
 }
 
@@ -241,12 +241,12 @@ int GpuRayHierarchy::build(const gpu::BatchTraceInputs& in, const Group& g) {
     HierarchyKindStats& ks = stats[g.kind];
     if (ks.levels.size() < level_nodes_.size()) ks.levels.resize(level_nodes_.size());
     for (std::size_t l = 0; l < level_nodes_.size(); ++l) ks.levels[l].nodes += level_nodes_[l];
-    // The level tables of rh_test.comp.
+    // The level tables of rh_cull.comp.
     std::vector<unsigned> first(kMaxRayLevels, 0u), nodes(kMaxRayLevels, 0u);
     std::copy(level_first_.begin(), level_first_.end(), first.begin());
     std::copy(level_nodes_.begin(), level_nodes_.end(), nodes.begin());
-    test_.set("rh_level_first", first);
-    test_.set("rh_level_nodes", nodes);
+    cull_.set("rh_level_first", first);
+    cull_.set("rh_level_nodes", nodes);
     return int(level_nodes_.size()) - 1;
 }
 
@@ -324,11 +324,11 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
         info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
         group_sums_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
-        set_source(test_, src);
-        test_.set("rh_group_first", unsigned(in_->first + group_.first));
-        test_.set("rh_branching", b);
-        test_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
-        dispatch_chunk(test_, step, count, on_gpu);
+        set_source(cull_, src);
+        cull_.set("rh_group_first", unsigned(in_->first + group_.first));
+        cull_.set("rh_branching", b);
+        cull_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
+        dispatch_chunk(cull_, step, count, on_gpu);
         const std::size_t groups = (std::size_t(count) + 63) / 64;
         compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);
         if (!chain) {

@@ -8,7 +8,7 @@
 //   objects   per frame (prepare): the triangles' bounding spheres and, with --objects tree, the object tree over
 //             them (object_tree.h: Morton codes, the shared radix sort, clusters, levels; shaders/ot_build.comp).
 //   traverse  candidate pairs (ray side, object side) (rh_pairs.glsl): the top ray level against every top item
-//             (triangles, mesh objects or the tree's root), implicitly; per chunk of pairs: rh_test.comp (the
+//             (triangles, mesh objects or the tree's root), implicitly; per chunk of pairs: rh_cull.comp (the
 //             cone+sphere test; each survivor splits one side and counts its children), the shared exclusive scan
 //             (common/gpu/scan.h), rh_expand.comp writing the children pairs, window by window, each window traced
 //             on before the next (depth first over steps). The scan runs over the sums of work groups of 64 pairs;
@@ -128,7 +128,7 @@ private:
     std::string phase(const char* name) const;
 
     std::string key_;
-    gpu::Program spheres_, tree_, build_, heads_, test_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_;
+    gpu::Program spheres_, tree_, build_, heads_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_;
     gpu::Compaction compaction_;
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
     gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_sums_, group_heads_, group_count_,

@@ -47,7 +47,7 @@ RhNode node_at(const std::vector<std::uint32_t>& w, std::size_t i) {
 
 // rh_union in GLSL: per record, the child count and 16 children (sphere, cone); out the node (sphere, cone).
 gpu::GlslTestHarness& glsl_union() {
-    static gpu::GlslTestHarness join("rh_union", R"(#include "04_ray_hierarchy/rh_common.glsl"
+    static gpu::GlslTestHarness join("rh_union", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
 void test_main() {
     RhNode kids[16];
     for (uint k = 0u; k < 16u; ++k) kids[k] = RhNode(in_vec4(1u + 8u * k), in_vec4(5u + 8u * k));
@@ -60,7 +60,7 @@ void test_main() {
 
 // The hierarchy built by the GLSL functions (leaves, then unions level by level), one harness run per level.
 std::vector<std::vector<RhNode>> glsl_build(const std::vector<RhRay>& rays, int b) {
-    static gpu::GlslTestHarness leaf("rh_leaf", R"(#include "04_ray_hierarchy/rh_common.glsl"
+    static gpu::GlslTestHarness leaf("rh_leaf", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
 void test_main() {
     const RhNode n = rh_leaf(in_vec3(0u), in_vec3(3u));
     out_vec4(0u, n.sphere);
@@ -93,7 +93,7 @@ void test_main() {
 }
 
 std::vector<glm::vec4> glsl_spheres(const std::vector<glm::vec3>& triangles) {
-    static gpu::GlslTestHarness h("rh_triangle_sphere", R"(#include "04_ray_hierarchy/rh_common.glsl"
+    static gpu::GlslTestHarness h("rh_triangle_sphere", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
 void test_main() { out_vec4(0u, rh_triangle_sphere(in_vec3(0u), in_vec3(3u), in_vec3(6u))); })");
     Words in;
     for (const glm::vec3& v : triangles) in << v;
@@ -107,7 +107,7 @@ void test_main() { out_vec4(0u, rh_triangle_sphere(in_vec3(0u), in_vec3(3u), in_
 
 TEST(GlslRayHierarchy, EveryRayInsideItsAncestorsAndNoHitRejected) {
     gpu::test_context();
-    static gpu::GlslTestHarness may_hit("rh_may_hit", R"(#include "04_ray_hierarchy/rh_common.glsl"
+    static gpu::GlslTestHarness may_hit("rh_may_hit", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
 void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec4(8u))); })");
     std::size_t rejected = 0;
     for (const ray_sets::Case& c : ray_sets::all())
@@ -222,7 +222,7 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
     settings.width = 64;
     settings.height = 48;
     settings.effects = analyze_effects(scene);
-    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
+    gpu::Wavefront wavefront({"common/shaders/brute_force.glsl", {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
 
     // Rays from inside the box: random, identical, one origin, opposite, zero/NaN/infinite directions.
@@ -406,7 +406,7 @@ TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
 // A built-in scene on the GPU with the wavefront pipeline's frame begun over it: what GpuRayHierarchy::trace needs
 // besides the rays, for the tests that trace batches of their own.
 struct TraceSetup {
-    explicit TraceSetup(const std::string& name) : scene(scene_at(name)), wavefront({"common/brute_force.glsl", {}, {}}) {
+    explicit TraceSetup(const std::string& name) : scene(scene_at(name)), wavefront({"common/shaders/brute_force.glsl", {}, {}}) {
         gpu_scene.upload(scene);
         RenderSettings settings;
         settings.effects = analyze_effects(scene);

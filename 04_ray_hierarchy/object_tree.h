@@ -16,7 +16,7 @@
 //
 // --objects selects the published variants: `triangles` (Roger et al.: the top ray nodes against every triangle),
 // `meshes` (runs of one material as objects, each against the top nodes first: today's object culling, Reis's
-// scheme) and `tree` (this file; the default). The GPU twin is shaders/ot_build.comp and rh_test.comp.
+// scheme) and `tree` (this file; the default). The GPU twin is shaders/ot_build.comp and rh_cull.comp.
 #pragma once
 
 #include <cstdint>

@@ -7,7 +7,7 @@
 namespace rt {
 
 RayHierarchyRenderer::RayHierarchyRenderer()
-    : GpuStage({"common/brute_force.glsl", {}, {},
+    : GpuStage({"common/shaders/brute_force.glsl", {}, {},
                 [this](const gpu::BatchTraceInputs& in) { trace_batch(in, false); },
                 [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); },
                 "leaf pairs"}) {}   // --pixel: the ray's (ray, triangle) pairs at level 0, its own node tests
@@ -72,7 +72,7 @@ void RayHierarchyRenderer::render_sample(const Scene& scene, const RenderSetting
 }
 
 std::vector<std::string> RayHierarchyRenderer::stage_programs() const {
-    std::vector<std::string> programs = {"raster/primary_hits.comp"};
+    std::vector<std::string> programs = {"common/shaders/raster/primary_hits.comp"};
     for (std::string& p : GpuRayHierarchy::program_names()) programs.push_back(std::move(p));
     return programs;
 }

@@ -9,7 +9,7 @@ namespace rt {
 
 namespace {
 
-constexpr const char* kShaders = "05_ray_sorting/";
+constexpr const char* kShaders = "05_ray_sorting/shaders/";
 
 // The passes' bindings (shaders/ray_sort.glsl: RS_BINDING_0..6): the common primitives' points 8..14.
 constexpr unsigned kBinding[] = {gpu::kBindingScanIn,        gpu::kBindingScanOut,       gpu::kBindingScanSums,

@@ -58,8 +58,8 @@ unsigned RaySortingRenderer::shadow_direction_bits() const {
 void RaySortingRenderer::compile() {
     if (sorter_) return;
     sorter_ = std::make_unique<RaySorter>();
-    gather_ = gpu::Program::compute("05_ray_sorting/ray_gather.comp");
-    scatter_ = gpu::Program::compute("05_ray_sorting/result_scatter.comp");
+    gather_ = gpu::Program::compute("05_ray_sorting/shaders/ray_gather.comp");
+    scatter_ = gpu::Program::compute("05_ray_sorting/shaders/result_scatter.comp");
 }
 
 void RaySortingRenderer::build(const Scene& scene, const RenderSettings& settings) {
@@ -118,7 +118,7 @@ std::vector<std::string> RaySortingRenderer::stage_programs() const {
     if (sort_options.sort)
         for (const char* p : {"ray_keys.comp", "chunk_heads.comp", "chunks.comp", "chunk_sizes.comp", "skeleton.comp",
                               "ray_gather.comp", "result_scatter.comp"})
-            programs.push_back(std::string("05_ray_sorting/") + p);
+            programs.push_back(std::string("05_ray_sorting/shaders/") + p);
     return programs;
 }
 

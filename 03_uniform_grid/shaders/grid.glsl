@@ -2,7 +2,7 @@
 // the grid cell by cell, in order along the ray, and is tested only against the triangles listed in the cells it
 // passes through. The wavefront pipeline (common/gpu/wavefront.h) calls trace_closest from its trace pass and
 // trace_any from its shadow pass. Shader path: "03_uniform_grid/grid.glsl". C++ twin: walk_grid in uniform_grid.cpp.
-#include "wavefront/wavefront.glsl"
+#include "common/shaders/wavefront/wavefront.glsl"
 #include "grid_walk.glsl"
 #include "opacity.glsl"
 

@@ -5,7 +5,7 @@
 // spread angle) holding every direction. A leaf is one ray: radius 0 at its origin, spread 0 along its direction.
 // radius < 0 marks an empty node (only rays with zero-length or non-finite directions or origins below it: such rays
 // never hit anything in the exact test, so they are left out).
-#include "wavefront/wavefront.glsl"
+#include "common/shaders/wavefront/wavefront.glsl"
 
 // The stage's SSBO bindings, from WF_BINDING_TRAVERSAL_FIRST (24) to 31 (Mesa allows 32 binding points; each pass
 // uses a few). The leaf and fold passes reuse two points for their own buffers.

@@ -1,5 +1,5 @@
 #version 450 core
-// The leaves: each (ray, triangle) pair of a chunk (the other pairs of the chunk are rh_test.comp's) gets the cheap
+// The leaves: each (ray, triangle) pair of a chunk (the other pairs of the chunk are rh_cull.comp's) gets the cheap
 // per-ray test first, the ray against the triangle's bounding sphere (rh_ray_may_hit; the sphere is computed from
 // the vertices here, as rh_spheres.comp does, so no buffer more is bound; --sphere-test off skips it, as the papers
 // do), and only then the exact ray/triangle test

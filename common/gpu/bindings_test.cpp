@@ -41,7 +41,7 @@ void main() {
 
 const char* kWavefrontDeclarations = R"(
 #define RECORD_TESTS_PER_PIXEL 1
-#include "wavefront/wavefront.glsl"
+#include "common/shaders/wavefront/wavefront.glsl"
 layout(local_size_x = 1) in;
 layout(std430, binding = WF_BINDING_RESULTS) buffer WfTraceResults { WavefrontTraceResult wf_trace_results[]; };
 layout(std430, binding = WF_BINDING_TRAVERSAL_FIRST) buffer TestTraversalFirst { uint test_traversal_first[]; };
@@ -178,11 +178,11 @@ TEST(Bindings, ScanAndCompactionPassesUseTheirBindings) {
         std::map<std::string, unsigned> blocks;
     };
     std::vector<Case> cases;
-    cases.push_back({Program::compute("common/scan_block.comp"),
+    cases.push_back({Program::compute("common/shaders/scan_block.comp"),
                      {{"ScanIn", kBindingScanIn}, {"ScanOut", kBindingScanOut}, {"ScanSums", kBindingScanSums}}});
-    cases.push_back({Program::compute("common/scan_add.comp"),
+    cases.push_back({Program::compute("common/shaders/scan_add.comp"),
                      {{"ScanOut", kBindingScanOut}, {"ScanSums", kBindingScanSums}}});
-    cases.push_back({Program::compute("common/compact_scatter.comp", {{"COMPACT_VALUES", "1"}}),
+    cases.push_back({Program::compute("common/shaders/compact_scatter.comp", {{"COMPACT_VALUES", "1"}}),
                      {{"Flags", kBindingCompactFlags}, {"Offsets", kBindingCompactOffsets},
                       {"Values", kBindingCompactValues}, {"Out", kBindingCompactOut}}});
     for (const Case& c : cases)

@@ -12,7 +12,7 @@ BruteForceTraversal::BruteForceTraversal(std::function<std::size_t()> triangle_c
 }
 
 Traversal BruteForceTraversal::traversal() {
-    Traversal t{"common/brute_force.glsl", {}, {}};
+    Traversal t{"common/shaders/brute_force.glsl", {}, {}};
     t.trace_batch = [this](const BatchTraceInputs& in) { run(false, in); };
     t.shadow_batch = [this](const BatchTraceInputs& in) { run(true, in); };
     return t;
@@ -24,8 +24,8 @@ void BruteForceTraversal::run(bool any_hit, const BatchTraceInputs& in) {
     if (!closest_ || key != compiled_for_) {
         ShaderDefines any_defines = in.wavefront.defines();
         any_defines.emplace("ANY_HIT", "1");
-        closest_ = Program::compute("common/brute_force_slice.comp", in.wavefront.defines());
-        any_ = Program::compute("common/brute_force_slice.comp", any_defines);
+        closest_ = Program::compute("common/shaders/brute_force_slice.comp", in.wavefront.defines());
+        any_ = Program::compute("common/shaders/brute_force_slice.comp", any_defines);
         compiled_for_ = key;
     }
     const Program& program = any_hit ? any_ : closest_;

@@ -155,7 +155,7 @@ Frame render(const Scene& scene, GpuScene& gpu_scene) {
     settings.effects = analyze_effects(scene);
     gpu_scene.upload(scene);
     GBuffer gbuffer;
-    Wavefront wavefront(Traversal{"common/brute_force.glsl", {}, {}, {}, {}});
+    Wavefront wavefront(Traversal{"common/shaders/brute_force.glsl", {}, {}, {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
     gbuffer.render(gpu_scene, scene.camera, scene.bounds, settings.width, settings.height, glm::vec2(0.5f));
     gpu_scene.bind();

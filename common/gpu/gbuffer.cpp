@@ -6,8 +6,8 @@
 namespace rt::gpu {
 
 GBuffer::GBuffer()
-    : program_(Program::from_files({{GL_VERTEX_SHADER, "raster/gbuffer.vert"},
-                                         {GL_FRAGMENT_SHADER, "raster/gbuffer.frag"}})) {
+    : program_(Program::from_files({{GL_VERTEX_SHADER, "common/shaders/raster/gbuffer.vert"},
+                                         {GL_FRAGMENT_SHADER, "common/shaders/raster/gbuffer.frag"}})) {
     // The vertices come straight from the scene's position buffer (vec4 per vertex, 3 per triangle).
     glCreateVertexArrays(1, &vao_);
     glEnableVertexArrayAttrib(vao_, 0);
@@ -107,7 +107,7 @@ void GBuffer::shade_sample(Wavefront& wavefront, glm::vec2 offset) {
     std::string key;
     for (const auto& [k, v] : wavefront.defines()) key.append(k).append("=").append(v).append(";");
     if (key != primary_hits_key_) {
-        primary_hits_ = Program::compute("raster/primary_hits.comp", wavefront.defines());
+        primary_hits_ = Program::compute("common/shaders/raster/primary_hits.comp", wavefront.defines());
         primary_hits_key_ = key;
     }
     primary_hits_.set("wf_sample_offset", offset);

@@ -27,7 +27,7 @@ void bind_window(const Buffer& b, GLuint binding, std::size_t begin, std::size_t
 }  // namespace
 
 RadixSort::RadixSort()
-    : count_(Program::compute("common/radix_count.comp")), scatter_(Program::compute("common/radix_scatter.comp")) {}
+    : count_(Program::compute("common/shaders/radix_count.comp")), scatter_(Program::compute("common/shaders/radix_scatter.comp")) {}
 
 void RadixSort::sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_bits) {
     if (key_bits > 32) throw std::invalid_argument("RadixSort: key_bits " + std::to_string(key_bits) + " > 32");

@@ -34,15 +34,15 @@ void check_storage_block(const char* what, std::size_t n) {
 }
 
 Scan::Scan()
-    : block_(Program::compute("common/scan_block.comp")),
-      block_flags_(Program::compute("common/scan_block.comp", {{"SCAN_FLAGS", "1"}})),
-      block_inclusive_(Program::compute("common/scan_block.comp", {{"SCAN_INCLUSIVE", "1"}})),
-      add_(Program::compute("common/scan_add.comp")),
-      block_max_(Program::compute("common/scan_block.comp", {{"SCAN_MAX", "1"}})),
-      block_heads_max_(Program::compute("common/scan_block.comp",
+    : block_(Program::compute("common/shaders/scan_block.comp")),
+      block_flags_(Program::compute("common/shaders/scan_block.comp", {{"SCAN_FLAGS", "1"}})),
+      block_inclusive_(Program::compute("common/shaders/scan_block.comp", {{"SCAN_INCLUSIVE", "1"}})),
+      add_(Program::compute("common/shaders/scan_add.comp")),
+      block_max_(Program::compute("common/shaders/scan_block.comp", {{"SCAN_MAX", "1"}})),
+      block_heads_max_(Program::compute("common/shaders/scan_block.comp",
                                         {{"SCAN_HEADS", "1"}, {"SCAN_MAX", "1"}, {"SCAN_INCLUSIVE", "1"}})),
-      add_max_(Program::compute("common/scan_add.comp", {{"SCAN_MAX", "1"}})),
-      segments_(Program::compute("common/scan_segments.comp")) {}
+      add_max_(Program::compute("common/shaders/scan_add.comp", {{"SCAN_MAX", "1"}})),
+      segments_(Program::compute("common/shaders/scan_segments.comp")) {}
 
 std::size_t Scan::window() const {
     GLint align = 0;
@@ -144,8 +144,8 @@ void Scan::segmented_inclusive(const Buffer& in, const Buffer& heads, Buffer& ou
 // ---------------------------------------------------------------------------------------------------------------
 
 Compaction::Compaction()
-    : scatter_indices_(Program::compute("common/compact_scatter.comp")),
-      scatter_values_(Program::compute("common/compact_scatter.comp", {{"COMPACT_VALUES", "1"}})) {}
+    : scatter_indices_(Program::compute("common/shaders/compact_scatter.comp")),
+      scatter_values_(Program::compute("common/shaders/compact_scatter.comp", {{"COMPACT_VALUES", "1"}})) {}
 
 void Compaction::run(const Program& scatter, const Buffer* values, const Buffer& flags, std::size_t n, Buffer& out,
                      Buffer& count, std::size_t count_offset) {

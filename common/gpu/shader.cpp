@@ -47,7 +47,7 @@ fs::path shader_root() {
     return root;
 }
 
-fs::path common_shader_dir() { return shader_root() / "common"; }
+fs::path common_shader_dir() { return shader_root() / "common" / "shaders"; }
 
 fs::path shader_path(const fs::path& relative) {
     return relative.is_absolute() ? relative : shader_root() / relative;
@@ -142,7 +142,7 @@ private:
         fs::path root;
         try {
             root = shader_root();
-            candidates.push_back(root / "common" / name);
+            candidates.push_back(root / "common" / "shaders" / name);
             candidates.push_back(root / name);
         } catch (const ShaderError&) {
         }
@@ -155,7 +155,7 @@ private:
     }
 
     static std::string display_name(const fs::path& p) {
-        // Relative to the shader root when inside it ("common/intersect.glsl"), else the full path.
+        // Relative to the shader root when inside it ("common/shaders/intersect.glsl"), else the full path.
         try {
             const fs::path root = fs::weakly_canonical(shader_root());
             const fs::path rel = fs::weakly_canonical(p).lexically_relative(root);

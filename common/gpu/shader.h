@@ -1,15 +1,17 @@
 // Shader programs built from files, with #include of shared GLSL and #defines injected by the stage.
 //
-// Files: shared GLSL lives in common/shaders/, a stage's passes in <stage>/shaders/; the build copies both to
-// <build>/shaders/common/ and <build>/shaders/<stage>/ (rt_add_shaders in common/gpu/CMakeLists.txt). At run time
-// they are found from the executable's path (<exe dir>/../shaders), or from $RT_SHADER_DIR when set; never from the
-// current directory.
+// Files: shared GLSL lives in common/shaders/, a stage's passes in <stage>/shaders/; the build copies each under
+// <build>/shaders/ at its path in the repository (rt_add_shaders in common/gpu/CMakeLists.txt), so a shader's name
+// ("common/shaders/wavefront/shade.comp", "03_uniform_grid/shaders/grid_count.comp") is where its source is, and so
+// are the file names in compiler messages. At run time they are found from the executable's path
+// (<exe dir>/../shaders), or from $RT_SHADER_DIR when set; never from the current directory.
 //
 // Preprocessing (done here, not by the driver):
 //  - `#version` is kept (or `#version 450 core` added) as the first line, followed by the injected defines.
-//  - `#include "file.glsl"` is replaced by the file, looked up in the including file's folder, then in the common
-//    shader folder, then in the shader root (so "common/x.glsl" and "02_raster_hybrid/y.glsl" work too). Each file
-//    is included once per shader (like #pragma once); includes are unconditional (not subject to #if).
+//  - `#include "file.glsl"` is replaced by the file, looked up in the including file's folder, then in
+//    common/shaders/, then in the shader root (so "common/shaders/wavefront/wavefront.glsl", the repository path,
+//    works too). Each file is included once per shader (like #pragma once); includes are unconditional (not subject
+//    to #if).
 //  - `#line` directives keep the real file names and lines: each file gets a source-string number, and a compile
 //    or link error is rethrown as ShaderError with "<file>:<line>: <driver message>" lines.
 #pragma once
@@ -45,7 +47,7 @@ ShaderDefines effect_defines(const Effects& effects);
 // The shader root: $RT_SHADER_DIR when set, else <directory of /proc/self/exe>/../shaders. Throws ShaderError when
 // the folder does not exist.
 std::filesystem::path shader_root();
-// shader_root() / "common".
+// shader_root() / "common" / "shaders": the shared GLSL.
 std::filesystem::path common_shader_dir();
 // A path relative to shader_root() (absolute paths are returned unchanged).
 std::filesystem::path shader_path(const std::filesystem::path& relative);
@@ -79,10 +81,10 @@ public:
     Program& operator=(const Program&) = delete;
     ~Program();
 
-    // A compute program from a file (relative to shader_root(), e.g. "03_uniform_grid/trace.comp").
+    // A compute program from a file (relative to shader_root(), e.g. "03_uniform_grid/shaders/trace.comp").
     static Program compute(const std::filesystem::path& file, const ShaderDefines& defines = {});
     static Program compute_source(const std::string& name, const std::string& text, const ShaderDefines& defines = {});
-    // Any set of stages: {{GL_VERTEX_SHADER, "raster/gbuffer.vert"}, {GL_FRAGMENT_SHADER, ...}}.
+    // Any set of stages: {{GL_VERTEX_SHADER, "common/shaders/raster/gbuffer.vert"}, {GL_FRAGMENT_SHADER, ...}}.
     static Program from_files(const std::vector<std::pair<GLenum, std::filesystem::path>>& stages,
                               const ShaderDefines& defines = {});
 

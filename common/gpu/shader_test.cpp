@@ -30,7 +30,7 @@ void write_file(const fs::path& p, const std::string& text) {
 
 TEST(Shader, ShaderRootIsNextToTheBinary) {
     const fs::path root = shader_root();
-    EXPECT_TRUE(fs::is_regular_file(root / "common" / "intersect.glsl")) << root;
+    EXPECT_TRUE(fs::is_regular_file(root / "common" / "shaders" / "intersect.glsl")) << root;
 }
 
 TEST(Shader, IncludesAndDefines) {
@@ -107,12 +107,12 @@ TEST(Shader, InMemorySourceErrorAndMissingInclude) {
 }
 
 TEST(Shader, LogMappingOfOtherDrivers) {
-    const std::vector<std::string> files = {"main.comp", "common/intersect.glsl"};
+    const std::vector<std::string> files = {"main.comp", "common/shaders/intersect.glsl"};
     // Lines of included files are encoded as file * 100000 + line (Mesa misreports some source numbers).
     EXPECT_EQ(map_shader_log("1(100017) : error C1008: undefined variable \"x\"", files),
-              "common/intersect.glsl:17: error C1008: undefined variable \"x\"\n");
+              "common/shaders/intersect.glsl:17: error C1008: undefined variable \"x\"\n");
     EXPECT_EQ(map_shader_log("0:3(10): error: syntax error", files), "main.comp:3:10: error: syntax error\n");
-    EXPECT_EQ(map_shader_log("ERROR: 0:100005: 'x' : undeclared", files), "common/intersect.glsl:5: ERROR: 'x' : undeclared\n");
+    EXPECT_EQ(map_shader_log("ERROR: 0:100005: 'x' : undeclared", files), "common/shaders/intersect.glsl:5: ERROR: 'x' : undeclared\n");
 }
 
 TEST(Shader, BindingsMatchBetweenCppAndGlsl) {

@@ -135,7 +135,7 @@ Variant variant(const std::string& builtin) {
     settings.width = 16;
     settings.height = 12;
     settings.effects = analyze_effects(scene);
-    Wavefront wavefront(Traversal{"common/brute_force.glsl", {}, {}, {}, {}});
+    Wavefront wavefront(Traversal{"common/shaders/brute_force.glsl", {}, {}, {}, {}});
     wavefront.begin_frame(gpu, settings);
     return {wavefront.defines(), gpu.normals().size()};
 }

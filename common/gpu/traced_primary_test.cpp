@@ -31,7 +31,7 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
 
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
-    gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
+    gpu::Wavefront wavefront({"common/shaders/brute_force.glsl", {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
     wavefront.trace_camera_sample(glm::vec2(0.5f));
     RayCounters gpu_counters;
@@ -82,7 +82,7 @@ TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
 
         gpu::GpuScene gpu_scene;
         gpu_scene.upload(scene);
-        gpu::Wavefront wavefront({"common/brute_force.glsl", {}, {}});
+        gpu::Wavefront wavefront({"common/shaders/brute_force.glsl", {}, {}});
         wavefront.begin_frame(gpu_scene, settings);
         wavefront.trace_camera_sample(glm::vec2(0.5f));
         FrameResult gpu;

@@ -56,7 +56,9 @@ HitRecord make_record(const WavefrontRay& ray, int sample, RayKind kind, std::in
 }  // namespace
 
 Wavefront::Wavefront(Traversal traversal)
-    : traversal_(std::move(traversal)), compact_(Program::compute("wavefront/compact_records.comp")), counters_(16) {}
+    : traversal_(std::move(traversal)),
+      compact_(Program::compute("common/shaders/wavefront/compact_records.comp")),
+      counters_(16) {}
 
 std::size_t Wavefront::storage_block_limit() const {
     GLint64 gl_limit = 0;
@@ -158,7 +160,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
 }
 
 Program Wavefront::compile(const std::string& pass, bool with_traversal) const {
-    std::string file = "wavefront/";
+    std::string file = "common/shaders/wavefront/";
     file += pass;
     if (!with_traversal) return Program::compute(file, defines_);
     // The traversal first (it defines trace_closest / trace_any), then the pass that calls it.
@@ -346,7 +348,7 @@ void Wavefront::prepare_camera_tracing() {
 
 // Flags the primary pass' ray slots that hold a deferred camera ray and packs them into queue(0); returns how many.
 std::size_t Wavefront::gather_deferred_rays(std::size_t slots) {
-    if (!deferred_rays_) deferred_rays_ = Program::compute("raster/deferred_rays.comp", defines_);
+    if (!deferred_rays_) deferred_rays_ = Program::compute("common/shaders/raster/deferred_rays.comp", defines_);
     ray_slots_.bind(kBindingWavefrontRaySlots);
     flags_.bind(kBindingWavefrontFlags);
     deferred_rays_.set("wf_input_count", unsigned(slots));

@@ -13,8 +13,8 @@
 //   bool trace_closest(Ray ray, out Hit hit);   // the nearest hit with 0 < t < ray.tmax (hit.triangle = -1 if none)
 //   bool trace_any(Ray ray);                    // whether anything is hit with 0 < t < ray.tmax (may stop early)
 //
-// and calls wf_count_tests(n) for the ray/triangle tests it makes. It should #include "wavefront/wavefront.glsl"
-// (rays, hits, the counting hook; RT_INTERSECT_METHOD says which ray/triangle test to use) and keep its own buffers
+// and calls wf_count_tests(n) for the ray/triangle tests it makes. It should
+// #include "common/shaders/wavefront/wavefront.glsl" (rays, hits, the counting hook; RT_INTERSECT_METHOD says which ray/triangle test to use) and keep its own buffers
 // at WF_BINDING_TRAVERSAL_FIRST and up. The pipeline compiles its trace and shadow passes with that file included
 // first. A stage that traces a whole queue at once (stages 04-05: many dispatches per pass) supplies trace_batch
 // and shadow_batch instead, which write one result per ray (BatchTraceInputs).
@@ -98,7 +98,7 @@ struct BatchTraceInputs {
 
 // The stage's traversal (see above).
 struct Traversal {
-    std::string glsl;                 // relative to the shader root, e.g. "common/brute_force.glsl"
+    std::string glsl;                 // relative to the shader root, e.g. "common/shaders/brute_force.glsl"
     ShaderDefines defines;            // extra defines it needs
     std::function<void()> bind;       // binds its buffers before the trace and shadow passes (may be empty)
     // Optional: whole-queue traversals replacing the per-ray trace and shadow passes (may be empty).
@@ -148,7 +148,7 @@ public:
 
     // The defines the passes were compiled with (effects, RT_INTERSECT_METHOD, COUNT_TESTS, the traversal's).
     const ShaderDefines& defines() const { return defines_; }
-    // Programs compiled for this frame's variant, e.g. "wavefront/shade.comp".
+    // Programs compiled for this frame's variant, e.g. "common/shaders/wavefront/shade.comp".
     std::vector<std::string> programs() const;
     // Passes dispatched since begin_frame, in first-run order, and how many dispatches each (a pass' compaction and
     // its collect step count with it: "trace" is trace.comp or trace_batch, trace_collect.comp and the scan).

@@ -28,7 +28,7 @@
 namespace rt {
 namespace {
 
-const gpu::Traversal kBruteForce{"common/brute_force.glsl", {}, {}, {}, {}};
+const gpu::Traversal kBruteForce{"common/shaders/brute_force.glsl", {}, {}, {}, {}};
 
 Scene builtin(const std::string& name, int width, int height) {
     FlattenOptions options;

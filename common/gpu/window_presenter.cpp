@@ -60,7 +60,7 @@ bool WindowPresenter::present_frame(GpuContext& context, const Wavefront& wavefr
                                     const std::string& screenshot) {
     size_texture(wavefront.width(), wavefront.height());
     if (!display_) {
-        display_ = Program::compute("common/display.comp");
+        display_ = Program::compute("common/shaders/display.comp");
         const std::array<float, 256> t = srgb8_thresholds();
         thresholds_.assign(std::vector<float>(t.begin(), t.end()));
     }

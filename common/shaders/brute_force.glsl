@@ -2,7 +2,7 @@
 // structure, as in stage 01 (brute_force_tracer.h). Every ray is tested against every triangle. The wavefront
 // pipeline (common/gpu/wavefront.h) calls these from its trace pass (closest hit) and its shadow pass (any hit);
 // stages 03-05 plug in a faster traversal instead. Shader path: "common/brute_force.glsl".
-#include "wavefront/wavefront.glsl"
+#include "common/shaders/wavefront/wavefront.glsl"
 #include "scene.glsl"
 #include "opacity.glsl"
 

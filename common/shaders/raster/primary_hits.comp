@@ -16,7 +16,7 @@
 // though the rasterizer saw a surface there: the point where the ray meets that triangle's plane stands in for
 // the sliver's hit, as close to it as shading needs. These tests are counted (wf_count_tests), like a traversal's;
 // the rays stay "rasterized" in the stats (docs/gpu.md).
-#include "wavefront/wavefront.glsl"
+#include "common/shaders/wavefront/wavefront.glsl"
 #include "scene.glsl"
 #include "environment.glsl"
 
