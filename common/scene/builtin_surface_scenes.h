@@ -15,4 +15,11 @@ SceneAsset absorption_scene();
 // that shows the bumps.
 SceneAsset normal_map_scene();
 
+// builtin:material_maps: textures that scale material factors texel by texel (a metallic-roughness floor of mirror
+// metal and rough plastic, an emissive panel).
+SceneAsset material_maps_scene();
+
+// builtin:cutouts: alpha cut-outs (a MASK fence with holes casting a shadow, a mirror reflecting it, a BLEND pane).
+SceneAsset cutouts_scene();
+
 }  // namespace rt

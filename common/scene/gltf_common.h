@@ -1,4 +1,4 @@
-// Helpers shared by the glTF loader (gltf_load.cpp) and saver (gltf_save.cpp). Internal to rt_scene.
+// Helpers shared by the glTF loader (gltf_loader.h and its files) and saver (gltf_save.cpp). Internal to rt_scene.
 #pragma once
 
 #include <algorithm>

@@ -1,0 +1,180 @@
+// Reading what tinygltf parsed: its generic JSON values (extensions, extras) and accessors (glTF 2.0, 3.6.2), each
+// checked against the buffers it points into. Used by the loader (gltf_loader.h).
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include <tiny_gltf.h>
+
+#include "gltf_common.h"
+#include "gltf_loader.h"
+
+namespace rt::gltf_detail {
+
+// ---------------------------------------------------------------------------------------------------------------
+// Reading tinygltf's generic JSON values (extensions).
+
+const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key) {
+    if (!object.IsObject() || !object.Has(key)) return nullptr;
+    return &object.Get(key);
+}
+
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const std::string& name) {
+    auto it = map.find(name);
+    return it == map.end() ? nullptr : &it->second;
+}
+
+double number(const tinygltf::Value* object, const std::string& key, double fallback) {
+    if (!object) return fallback;
+    const tinygltf::Value* v = member(*object, key);
+    return v && v->IsNumber() ? v->GetNumberAsDouble() : fallback;
+}
+
+// An array of numbers, or the fallback when it is missing or not all numbers.
+std::vector<double> numbers(const tinygltf::Value* object, const std::string& key, std::vector<double> fallback) {
+    if (!object) return fallback;
+    const tinygltf::Value* v = member(*object, key);
+    if (!v || !v->IsArray()) return fallback;
+    std::vector<double> out;
+    for (int i = 0; i < int(v->ArrayLen()); ++i) {
+        const tinygltf::Value& e = v->Get(i);
+        if (!e.IsNumber()) return fallback;
+        out.push_back(e.GetNumberAsDouble());
+    }
+    return out;
+}
+
+// A number for a message: short, never 309 digits.
+std::string describe(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v);
+    return text;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------------------------
+// Accessors (glTF 2.0, 3.6.2 "Accessors").
+
+int components(int type) {
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+    }
+}
+
+int component_size(int component_type) {
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+    }
+}
+
+// The bytes of an accessor's elements, checked against the buffer view and the buffer.
+struct AccessorView {
+    const unsigned char* data = nullptr;
+    std::size_t count = 0;
+    std::size_t stride = 0;
+    int component_type = 0;
+    int components = 0;
+    bool normalized = false;
+};
+
+AccessorView view_accessor(const tinygltf::Model& model, int index, const std::string& what) {
+    if (index < 0 || std::size_t(index) >= model.accessors.size())
+        invalid(what + ": accessor " + std::to_string(index) + " does not exist");
+    const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
+    const std::string name = what + " (accessor " + std::to_string(index) + ")";
+    if (a.sparse.isSparse) invalid(name + ": sparse accessors are not supported");
+    AccessorView v;
+    v.count = a.count;
+    v.component_type = a.componentType;
+    v.components = components(a.type);
+    v.normalized = a.normalized;
+    const int csize = component_size(a.componentType);
+    if (v.components == 0 || csize == 0) invalid(name + ": unsupported type");
+    if (a.bufferView < 0 || std::size_t(a.bufferView) >= model.bufferViews.size())
+        invalid(name + ": missing or invalid bufferView");
+    const tinygltf::BufferView& bv = model.bufferViews[std::size_t(a.bufferView)];
+    if (bv.buffer < 0 || std::size_t(bv.buffer) >= model.buffers.size()) invalid(name + ": invalid buffer");
+    const std::vector<unsigned char>& buffer = model.buffers[std::size_t(bv.buffer)].data;
+    const std::size_t element = std::size_t(csize) * std::size_t(v.components);
+    v.stride = bv.byteStride ? bv.byteStride : element;
+    if (v.stride < element) invalid(name + ": byteStride smaller than an element");
+    if (v.count == 0) return v;
+    // Every byte read must lie inside the buffer view, and the view inside the buffer. Done in 64-bit with the count
+    // bounded first, so nothing overflows.
+    if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
+        invalid(name + ": bufferView exceeds its buffer");
+    if (v.count > bv.byteLength) invalid(name + ": count exceeds its bufferView");
+    const std::uint64_t end = std::uint64_t(a.byteOffset) + std::uint64_t(v.count - 1) * v.stride + element;
+    if (end > bv.byteLength) invalid(name + ": data exceeds its bufferView");
+    v.data = buffer.data() + bv.byteOffset + a.byteOffset;
+    return v;
+}
+
+// Component j of element i as a float; normalized integers map to [0, 1] or [-1, 1] (glTF 2.0, 3.11).
+float read_component(const AccessorView& v, std::size_t i, int j) {
+    const unsigned char* p = v.data + i * v.stride + std::size_t(j) * std::size_t(component_size(v.component_type));
+    switch (v.component_type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(*p) / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); return float(s) / 65535.0f; }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        std::int8_t b;
+        std::memcpy(&b, p, 1);
+        return std::max(float(b) / 127.0f, -1.0f);
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        std::int16_t s;
+        std::memcpy(&s, p, 2);
+        return std::max(float(s) / 32767.0f, -1.0f);
+    }
+    default: return 0.0f;
+    }
+}
+
+}  // namespace
+
+// Reads float (or, when allowed, normalized integer) elements with the given number of components, as vec4s.
+std::vector<glm::vec4> read_vectors(const tinygltf::Model& model, int index, int want_components, bool allow_normalized,
+                                    const std::string& what) {
+    const AccessorView v = view_accessor(model, index, what);
+    if (v.components != want_components)
+        invalid(what + " (accessor " + std::to_string(index) + "): expected " + std::to_string(want_components) +
+                " components");
+    const bool is_float = v.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    const bool is_normalized = v.normalized && v.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    if (!is_float && !(allow_normalized && is_normalized))
+        invalid(what + " (accessor " + std::to_string(index) + "): unsupported component type");
+    std::vector<glm::vec4> out(v.count, glm::vec4(0.0f));
+    for (std::size_t i = 0; i < v.count; ++i)
+        for (int j = 0; j < v.components; ++j) out[i][j] = read_component(v, i, j);
+    return out;
+}
+
+std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index, const std::string& what) {
+    const AccessorView v = view_accessor(model, index, what);
+    if (v.components != 1) invalid(what + ": indices must be scalars");
+    std::vector<std::uint32_t> out(v.count);
+    for (std::size_t i = 0; i < v.count; ++i) {
+        const unsigned char* p = v.data + i * v.stride;
+        switch (v.component_type) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = *p; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); out[i] = s; break; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&out[i], p, 4); break;
+        default: invalid(what + ": indices must be unsigned byte, short or int");
+        }
+    }
+    return out;
+}
+
+}  // namespace rt::gltf_detail
