@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -21,7 +22,11 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
     FrameResult result;
     result.image = Image(settings.width, settings.height);
     const auto t0 = std::chrono::steady_clock::now();
-    const BruteForceTracer<T> tracer(scene, settings.intersect, settings.effects.cutouts);
+    // With BLEND read as coverage, closest-hit rays see a BLEND surface wherever it covers anything while shadow
+    // rays keep the cut-out (opacity.h): a second tracer with the shadow rule.
+    const BruteForceTracer<T> tracer(scene, settings.intersect, settings.effects.cutouts, settings.effects.blend);
+    std::optional<BruteForceTracer<T>> shadow_tracer;
+    if (settings.effects.blend) shadow_tracer.emplace(scene, settings.intersect, settings.effects.cutouts, false);
     const auto t1 = std::chrono::steady_clock::now();
 
     WhittedSettings ws;
@@ -31,7 +36,7 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
     ws.offset = settings.offset;
     ws.epsilon = settings.epsilon;
     ws.effects = settings.effects;
-    const Whitted<T, BruteForceTracer<T>> whitted(scene, tracer, ws);
+    const Whitted<T, BruteForceTracer<T>> whitted(scene, tracer, ws, shadow_tracer ? &*shadow_tracer : nullptr);
     const std::vector<glm::vec2> samples = pixel_sample_offsets(settings.spp);
 
     // Diagnostics: each row records its own hits (rows run in parallel), joined in row order afterwards.

@@ -28,7 +28,8 @@ TEST(CutoutDeferral, PixelsSeeingThroughAHoleGetStage01sHitBehindIt) {
     const auto& passes = frame.extra["passes"];
     EXPECT_NE(std::find(passes.begin(), passes.end(), "deferred_rays"), passes.end()) << passes.dump();
 
-    const BruteForceTracer<float> cut(scene, settings.intersect, true), solid(scene, settings.intersect, false);
+    const BruteForceTracer<float> cut(scene, settings.intersect, true, settings.effects.blend),
+        solid(scene, settings.intersect, false);
     std::size_t primaries = 0, holes = 0, same = 0;
     for (const HitRecord& r : frame.hits) {
         if (r.path != 1 || (r.kind_light & 0xffu) != std::uint32_t(RayKind::Primary)) continue;
@@ -44,7 +45,8 @@ TEST(CutoutDeferral, PixelsSeeingThroughAHoleGetStage01sHitBehindIt) {
         if (r.triangle == through.triangle && r.t == float(through.t)) ++same;
     }
     EXPECT_EQ(primaries, std::size_t(width * height)) << "one primary record per pixel, deferred or not";
-    EXPECT_GT(holes, 200u);
+    // The fence's holes (137 pixels at this size); the BLEND pane's faint stripes are coverage, not holes.
+    EXPECT_GT(holes, 100u);
     EXPECT_EQ(same, holes);
 }
 

@@ -133,14 +133,16 @@ void GridRenderer::add_stage_stats(FrameResult& result) {
     // The traversal's counters, per ray kind.
     const std::vector<std::uint64_t> s = grid_->traversal_stats();
     nlohmann::json kinds = nlohmann::json::object();
-    for (int k = 0; k < 4; ++k) {
-        if (s[k] == 0) continue;
-        kinds[ray_kind_name(RayKind(k))] = {{"rays", s[k]},
-                                {"cells_visited_per_ray", double(s[4 + k]) / double(s[k])},
-                                {"tests_per_ray", double(s[8 + k]) / double(s[k])}};
+    // grid.glsl's layout: rays [k], cells visited [kRayKinds + k], tests [2 kRayKinds + k], bound reached [3 kRayKinds].
+    for (int k = 0; k < kRayKinds; ++k) {
+        if (s[std::size_t(k)] == 0) continue;
+        const double rays = double(s[std::size_t(k)]);
+        kinds[ray_kind_name(RayKind(k))] = {{"rays", s[std::size_t(k)]},
+                                {"cells_visited_per_ray", double(s[std::size_t(kRayKinds + k)]) / rays},
+                                {"tests_per_ray", double(s[std::size_t(2 * kRayKinds + k)]) / rays}};
     }
     grid["traversal"] = kinds;
-    grid["loop_bound_reached"] = s[12];
+    grid["loop_bound_reached"] = s[std::size_t(3 * kRayKinds)];
     result.extra["grid"] = grid;
 }
 

@@ -202,13 +202,14 @@ struct TriangleTest {
     IntersectMethod method;
     WatertightRay<float> w;
     const Scene* cutouts = nullptr;   // a transparent hit is no hit (opacity.h)
+    bool blend_coverage = false;      // BLEND surfaces are hit wherever they cover anything
     std::size_t tests = 0;
     bool operator()(const Ray<float>& ray, std::uint32_t t, float& th, float& u, float& v) {
         ++tests;
         const glm::vec3 &a = positions[3 * t], &b = positions[3 * t + 1], &c = positions[3 * t + 2];
         const bool hit = method == IntersectMethod::Watertight ? intersect_watertight(ray, w, a, b, c, th, u, v)
                                                                : intersect_moller(ray, a, b, c, th, u, v);
-        return hit && (!cutouts || surface_opaque(*cutouts, t, u, v));
+        return hit && (!cutouts || surface_opaque(*cutouts, t, u, v, blend_coverage));
     }
 };
 
@@ -225,9 +226,10 @@ void fold_hit(TriangleTest& test, Ray<float>& ray, std::uint32_t t, Hit<float>& 
 }  // namespace
 
 Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& positions, const Ray<float>& ray,
-                            IntersectMethod method, GridTraceCount* count, const Scene* cutouts) {
+                            IntersectMethod method, GridTraceCount* count, const Scene* cutouts,
+                            bool blend_coverage) {
     const GridParams& g = grid.params;
-    TriangleTest test{positions, method, WatertightRay<float>(ray.direction), cutouts};
+    TriangleTest test{positions, method, WatertightRay<float>(ray.direction), cutouts, blend_coverage};
     Hit<float> best;
     float second = std::numeric_limits<float>::infinity();   // the smallest t of another triangle, > best.t
     GridStep ring[kGridTieCells];                             // the last cells visited

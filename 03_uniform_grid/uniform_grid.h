@@ -94,8 +94,10 @@ struct GridTraceCount {
     bool bound_reached = false;
 };
 // With `cutouts` (a scene with MASK or BLEND materials), a hit where the surface is transparent is no hit
-// (common/trace/opacity.h), in both phases; the result is brute force's with the same test.
+// (common/trace/opacity.h), in both phases; the result is brute force's with the same test (`blend_coverage`: BLEND
+// surfaces are hit wherever they cover anything, Effects::blend).
 Hit<float> grid_closest_hit(const CpuGrid& grid, const std::vector<glm::vec3>& positions, const Ray<float>& ray,
-                            IntersectMethod method, GridTraceCount* count = nullptr, const Scene* cutouts = nullptr);
+                            IntersectMethod method, GridTraceCount* count = nullptr, const Scene* cutouts = nullptr,
+                            bool blend_coverage = false);
 
 }  // namespace rt

@@ -68,6 +68,7 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     leaf_closest_ = Program::compute("04_ray_hierarchy/shaders/rh_leaf.comp", d);
     gpu::ShaderDefines shadow = d;
     shadow.emplace("RH_SHADOW", "1");
+    shadow.emplace("RT_SHADOW_RAYS", "1");   // the shadow rule of the opacity test (opacity.glsl)
     leaf_shadow_ = Program::compute("04_ray_hierarchy/shaders/rh_leaf.comp", shadow);
     fold_ = Program::compute("04_ray_hierarchy/shaders/rh_fold.comp", d);
     args_pass_ = Program::compute("04_ray_hierarchy/shaders/rh_args.comp", d);
@@ -147,7 +148,7 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
     if (!shadow) fold(in);
     // The leaves' exact tests, counted by rh_leaf.comp and read back per group, go to the pipeline's test counters
     // (the total and their ray kind's) in a few adds (one thread each).
-    for (std::uint32_t kind = 0; kind < 4; ++kind)
+    for (std::uint32_t kind = 0; kind < std::uint32_t(kRayKinds); ++kind)
         for (std::uint64_t& pending = pending_tests_[kind]; pending > 0;) {
             const std::uint32_t add = std::uint32_t(std::min<std::uint64_t>(pending, 1u << 31));
             fold_.set("rh_mode", 6u);
@@ -203,7 +204,7 @@ std::vector<GpuRayHierarchy::Group> GpuRayHierarchy::find_groups(const gpu::Batc
         g.count = (i + 1 < count ? heads[i + 1] : n) - heads[i];
         const gpu::WavefrontRay r = in.rays.download_value<gpu::WavefrontRay>(in.first + g.first);
         ++syncs;
-        g.kind = (r.depth_kind >> 16) & 3u;
+        g.kind = std::min<std::uint32_t>(r.depth_kind >> 16, std::uint32_t(kRayKinds - 1));
         groups.push_back(g);
     }
     return groups;
@@ -522,10 +523,10 @@ void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
     fold_.set("rh_count", n);
     fold_.dispatch_threads(n);
     barrier();
-    std::uint32_t info[8];
+    std::uint32_t info[4 + kRayKinds];   // rh_info.glsl: RH_INFO_FOLD_TESTS + kind
     info_.download(info, sizeof info);
     ++syncs;
-    for (int k = 0; k < 4; ++k) stats[k].fold_tests += info[4 + k];
+    for (int k = 0; k < kRayKinds; ++k) stats[std::size_t(k)].fold_tests += info[4 + k];
 }
 
 }  // namespace rt

@@ -83,7 +83,7 @@ public:
     HierarchyOptions options;
     gpu::GpuTimer* timer = nullptr;   // phases "rh_build", "rh_traverse", "rh_local" (per kind: "rh_build.shadow" ...)
     // Stats since reset_stats(), indexed by RayKind (0 = primary, unused).
-    std::array<HierarchyKindStats, 4> stats;
+    std::array<HierarchyKindStats, kRayKinds> stats;
     void reset_stats() {
         stats = {};
         fold_rounds = prunes = chunks = windows = syncs = 0;
@@ -138,7 +138,7 @@ private:
     std::vector<std::uint32_t> level_first_, level_nodes_;   // the ray hierarchy's levels (level 0 = the rays)
     std::vector<std::uint32_t> object_level_first_, object_level_count_;   // the object tree's (level 1 first)
     std::size_t triangles_ = 0, objects_ = 0, object_nodes_ = 0, capacity_ = 0, hit_capacity_ = 0;
-    std::uint64_t pending_tests_[4] = {0, 0, 0, 0};   // leaf tests not yet added to the test counters, by ray kind
+    std::uint64_t pending_tests_[kRayKinds] = {};   // leaf tests not yet added to the test counters, by ray kind
     std::uint64_t hits_bound_ = 0;    // an upper bound of the hit list's length (read back when it may be full)
     // The batch being traced.
     const gpu::BatchTraceInputs* in_ = nullptr;

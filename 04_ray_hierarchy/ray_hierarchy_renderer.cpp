@@ -98,8 +98,8 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
     auto ms = [&](const std::string& name) { return pass_ms.contains(name) ? double(pass_ms[name]) : 0.0; };
     nlohmann::json kinds = nlohmann::json::object();
-    for (int k = 1; k < 4; ++k) {
-        const HierarchyKindStats& s = hierarchy_->stats[k];
+    for (int k = 1; k < kRayKinds; ++k) {
+        const HierarchyKindStats& s = hierarchy_->stats[std::size_t(k)];
         if (s.rays == 0) continue;
         nlohmann::json levels = nlohmann::json::array();
         for (std::size_t l = 0; l < s.levels.size(); ++l) {

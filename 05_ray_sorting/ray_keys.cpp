@@ -91,7 +91,10 @@ RayKeyLayout make_key_layout(glm::vec3 box_min, glm::vec3 box_max, unsigned key_
     layout.direction_total = direction_bits;
     layout.key_bits = layout.origin_total + layout.direction_total;
     layout.direction_major = order == KeyOrder::direction_first;
-    layout.group_count = 3 + lights;
+    // Groups: 0 primary, 1 reflection, 2 refraction, 3 transparency (the trace queue's kinds), 3 + light for shadow
+    // rays (the shadow queue's). The two queues are sorted apart, so group 3 never holds both transparency rays and
+    // shadow rays to light 0; at least 4 groups, so that transparency has its own even in a scene without lights.
+    layout.group_count = std::max(4u, 3 + lights);
     const unsigned group_bits = unsigned(std::bit_width(layout.group_count - 1));
     layout.hash_bits = std::min(layout.key_bits, 32 - group_bits);
     layout.hash_drop = layout.key_bits - layout.hash_bits;

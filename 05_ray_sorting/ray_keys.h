@@ -9,8 +9,8 @@
 //   origin first (shadow rays):                  [ group : G ][ origin cell : O ][ direction cell : D ]
 //   direction first (reflection, refraction):    [ group : G ][ coarse direction cell : D ][ origin cell : O ]
 //
-//  - group: primary 0, reflection 1, refraction 2, shadow ray towards light l: 3 + l. G = the bits 3 + lights
-//    values need. Rays of different groups never share a key, and groups sort in this order, so the sorted rays of
+//  - group: primary 0, reflection 1, refraction 2, transparency 3, shadow ray towards light l: 3 + l (a batch holds
+//    trace rays or shadow rays, never both). G = the bits max(4, 3 + lights) values need. Rays of different groups never share a key, and groups sort in this order, so the sorted rays of
 //    a group stay in one range (the queues of the wavefront pipeline hold the groups in the same order).
 //  - origin: a virtual grid of CUBIC cells over the scene box: one cell size c on every axis, and per axis as many
 //    bits as its extent needs, b_a = the least b >= 0 with extent_a <= c 2^b (a flat or thin axis gets few bits or
@@ -70,7 +70,7 @@ struct RayKeyLayout {
     unsigned direction_total = 0;    // direction_bits.x + .y
     unsigned hash_drop = 0;          // low hash bits given up for the group
     unsigned hash_bits = 0;          // hash bits kept
-    unsigned group_count = 1;        // 3 + lights
+    unsigned group_count = 1;        // max(4, 3 + lights)
     unsigned key_bits = 0;           // origin_total + direction_total: the hash's length before the drop
     bool direction_major = false;    // the direction cell above the origin cell (KeyOrder::direction_first)
     unsigned sort_bits = 0;          // group bits + hash_bits: the bits the radix sort looks at

@@ -18,14 +18,14 @@ LEFT = {"stage", "scene", "renderer"}
 LEGEND = """\
 frame ms: the frame's wall clock (time_ms.total).  primary rays: one per pixel and sample, however found.
 primaries rasterized: those found by the G-buffer instead of traced.  rays traced: every other ray (traced
-primaries, shadow, reflection, refraction).  trace ms: time_ms.trace (01: tracing and shading; GPU stages: the
+primaries, shadow, reflection, refraction, transparency).  trace ms: time_ms.trace (01: tracing and shading; GPU stages: the
 traversal passes).  traced Mrays/s: rays traced / trace ms ("-" where no ray was traced; 2 significant digits
 below 1).  tests/ray: the frame's ray/triangle tests (the G-buffer's included) per ray, rasterized primaries too."""
 
 
 def all_rays(stats):
     r = stats["rays"]
-    return r["primary"] + r["shadow"] + r["reflection"] + r["refraction"]
+    return r["primary"] + r["shadow"] + r["reflection"] + r["refraction"] + r.get("transparency", 0)
 
 
 def tests_per_ray(stats):

@@ -96,8 +96,8 @@ HitComparison compare_hits(std::vector<HitRecord> a, std::vector<HitRecord> b, c
     c.empty = a.empty() || b.empty();
     sort_by_key(a, "A");
     sort_by_key(b, "B");
-    for (const HitRecord& r : a) c.count_a[std::min(kind_of(r), 3u)]++;
-    for (const HitRecord& r : b) c.count_b[std::min(kind_of(r), 3u)]++;
+    for (const HitRecord& r : a) c.count_a[std::min(kind_of(r), std::uint32_t(kRayKinds - 1))]++;
+    for (const HitRecord& r : b) c.count_b[std::min(kind_of(r), std::uint32_t(kRayKinds - 1))]++;
     c.primaries = c.count_a[0];
 
     std::array<std::size_t, 5> examples_of{};   // per category: only A, only B, ray, triangle, t
@@ -165,9 +165,9 @@ std::string HitComparison::report(const HitCompareOptions& options) const {
     std::string s;
     char line[256];
     s += "rays per kind (A / B):";
-    for (int k = 0; k < 4; ++k) {
-        std::snprintf(line, sizeof line, " %s %llu / %llu", ray_kind_name(RayKind(k)), (unsigned long long)count_a[std::size_t(k)],
-                      (unsigned long long)count_b[std::size_t(k)]);
+    for (int k = 0; k < kRayKinds; ++k) {
+        std::snprintf(line, sizeof line, " %s %llu / %llu", ray_kind_name(RayKind(k)),
+                      (unsigned long long)count_a[std::size_t(k)], (unsigned long long)count_b[std::size_t(k)]);
         s += line;
     }
     s += "\n";

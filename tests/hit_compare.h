@@ -25,7 +25,7 @@ struct HitCompareOptions {
 };
 
 struct HitComparison {
-    std::array<std::uint64_t, 4> count_a{}, count_b{};   // records per RayKind
+    std::array<std::uint64_t, kRayKinds> count_a{}, count_b{};   // records per RayKind
     std::uint64_t primaries = 0;             // primary rays in A
     std::uint64_t differing_primaries = 0;   // primary rays that differ in any way (or are in one dump only)
     std::uint64_t excluded = 0;              // other records in the trees of differing primaries (A and B)

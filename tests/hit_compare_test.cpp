@@ -44,7 +44,7 @@ TEST(HitCompare, IdenticalDumpsInAnyOrderMatch) {
     EXPECT_TRUE(c.passed({}));
     EXPECT_EQ(c.differences(), 0u);
     EXPECT_EQ(c.compared, 5u);
-    EXPECT_EQ(c.count_a, (std::array<std::uint64_t, 4>{2, 4, 1, 0}));
+    EXPECT_EQ(c.count_a, (std::array<std::uint64_t, kRayKinds>{2, 4, 1, 0, 0}));
     EXPECT_EQ(c.count_a, c.count_b);
 }
 

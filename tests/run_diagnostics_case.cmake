@@ -22,7 +22,7 @@ if(MODE STREQUAL "dump_hits_and_heatmap_per_frame")
     endforeach()
     # 8 bytes of magic, then 48 bytes per traced ray (common/trace/hit_record.h).
     set(rays 0)
-    foreach(kind primary shadow reflection refraction)
+    foreach(kind primary shadow reflection refraction transparency)
       string(JSON n GET "${json}" frame_stats ${frame} rays ${kind})
       math(EXPR rays "${rays} + ${n}")
     endforeach()

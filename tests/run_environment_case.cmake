@@ -43,7 +43,7 @@ if(NOT cpu_stage)   # a GPU stage
     message(FATAL_ERROR "a map changed the programs: ${plain_programs} -> ${mapped_programs}")
   endif()
 endif()
-foreach(kind primary shadow reflection refraction)
+foreach(kind primary shadow reflection refraction transparency)
   string(JSON plain_rays GET "${json_plain}" rays ${kind})
   string(JSON mapped_rays GET "${json_mapped}" rays ${kind})
   if(NOT plain_rays EQUAL mapped_rays)

@@ -1,15 +1,15 @@
 // Stage 03's traversal (Amanatides & Woo 1987, "A Fast Voxel Traversal Algorithm for Ray Tracing"): the ray walks
 // the grid cell by cell, in order along the ray, and is tested only against the triangles listed in the cells it
 // passes through. The wavefront pipeline (common/gpu/wavefront.h) calls trace_closest from its trace pass and
-// trace_any from its shadow pass. Shader path: "03_uniform_grid/grid.glsl". C++ twin: walk_grid in uniform_grid.cpp.
+// trace_any from its shadow pass. Shader path: "03_uniform_grid/shaders/grid.glsl". C++ twin: walk_grid in uniform_grid.cpp.
 #include "common/shaders/wavefront/wavefront.glsl"
 #include "grid_walk.glsl"
 #include "opacity.glsl"
 
 
 #if defined(GRID_STATS) && defined(COUNT_TESTS)   // compiled out without test counting (timing runs)
-// 64-bit counters (lo, hi) in grid_stats, as counters.glsl: per ray kind k (WF_KIND_*) rays [k], cells visited
-// [4 + k], tests [8 + k]; [12] walks stopped by the loop bound (never, on a correct walk).
+// 64-bit counters (lo, hi) in grid_stats, as counters.glsl: per ray kind k (WF_KIND_*, five kinds) rays [k], cells
+// visited [5 + k], tests [10 + k]; [15] walks stopped by the loop bound (never, on a correct walk).
 void grid_stat_add(uint index, uint value) {
     if (value == 0u) return;
     const uint old = atomicAdd(grid_stats[2u * index], value);
@@ -21,9 +21,9 @@ void grid_record(uint cells, uint tests, bool bound_reached) {
     const uint ray = rt_group_index() * 64u + gl_LocalInvocationIndex;
     const uint kind = wf_kind(wf_rays_in[wf_input_first + ray]);
     grid_stat_add(kind, 1u);
-    grid_stat_add(4u + kind, cells);
-    grid_stat_add(8u + kind, tests);
-    if (bound_reached) grid_stat_add(12u, 1u);
+    grid_stat_add(5u + kind, cells);
+    grid_stat_add(10u + kind, tests);
+    if (bound_reached) grid_stat_add(15u, 1u);
 }
 #else
 void grid_record(uint cells, uint tests, bool bound_reached) {}

@@ -174,7 +174,7 @@ void add_shared_options(CLI::App& app, Options& o) {
     app.add_option("--max-depth", o.render.max_depth, "Whitted recursion depth (0 = no reflection/refraction rays)")
         ->capture_default_str()->check(whole_number_in(0, 64));
     app.add_option("--effects", o.effects,
-                   "auto (what the scene calls for), all, none, or a comma list of shadows,reflections,refractions,textures,absorption,normal_maps,cutouts")
+                   "auto (what the scene calls for), all, none, or a comma list of shadows,reflections,refractions,textures,absorption,normal_maps,cutouts,blend")
         ->capture_default_str()
         ->check(CLI::Validator([](std::string& s) { return is_valid_effects_spec(s) ? std::string() : "unknown effect in '" + s + "'"; }, "EFFECTS"));
     app.add_option("--stats", o.stats, "Write the frame's statistics as JSON");

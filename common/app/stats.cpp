@@ -34,7 +34,8 @@ nlohmann::json make_stats_json(const std::string& stage, const std::string& scen
                  {"rasterized", s.rasterized_rays},
                  {"shadow", s.counters.rays[int(RayKind::Shadow)]},
                  {"reflection", s.counters.rays[int(RayKind::Reflection)]},
-                 {"refraction", s.counters.rays[int(RayKind::Refraction)]}};
+                 {"refraction", s.counters.rays[int(RayKind::Refraction)]},
+                 {"transparency", s.counters.rays[int(RayKind::Transparency)]}};
     j["traced_rays"] = s.traced_rays();
     j["intersection_tests"] = s.counters.intersection_tests;
     // Where they come from: the rays of each kind made these (primary: the primary-hit pass of the rasterizing

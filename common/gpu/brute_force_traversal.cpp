@@ -24,6 +24,7 @@ void BruteForceTraversal::run(bool any_hit, const BatchTraceInputs& in) {
     if (!closest_ || key != compiled_for_) {
         ShaderDefines any_defines = in.wavefront.defines();
         any_defines.emplace("ANY_HIT", "1");
+        any_defines.emplace("RT_SHADOW_RAYS", "1");   // the shadow rule of the opacity test (opacity.glsl)
         closest_ = Program::compute("common/shaders/brute_force_slice.comp", in.wavefront.defines());
         any_ = Program::compute("common/shaders/brute_force_slice.comp", any_defines);
         compiled_for_ = key;

@@ -93,9 +93,11 @@ std::vector<std::uint64_t> CounterBuffer::read() const {
 RayCounters CounterBuffer::ray_counters() const {
     const auto c = read();
     RayCounters r;
-    for (int i = 0; i < 4; ++i) r.rays[i] = c.size() > std::size_t(i) ? c[std::size_t(i)] : 0;
+    const unsigned ray_counter[kRayKinds] = {kCounterPrimaryRays, kCounterShadowRays, kCounterReflectionRays,
+                                             kCounterRefractionRays, kCounterTransparencyRays};
+    for (int i = 0; i < kRayKinds; ++i) r.rays[i] = c.size() > ray_counter[i] ? c[ray_counter[i]] : 0;
     r.intersection_tests = c.size() > kCounterIntersectionTests ? c[kCounterIntersectionTests] : 0;
-    for (unsigned k = 0; k < 4; ++k)
+    for (unsigned k = 0; k < unsigned(kRayKinds); ++k)
         r.tests_by_kind[k] = c.size() > kCounterTestsFirst + k ? c[kCounterTestsFirst + k] : 0;
     return r;
 }

@@ -83,8 +83,9 @@ enum CounterIndex : unsigned {
     kCounterRefractionRays = 3,
     kCounterIntersectionTests = 4,
     kCounterLoopsCut = 5,          // invocations whose loops the driver ended early (wavefront.glsl)
-    kCounterTestsFirst = 8,        // + RayKind: the intersection tests by the kind of ray that made them
-    kCounterStageFirst = 12,
+    kCounterTransparencyRays = 6,  // RayKind::Transparency (continuations through BLEND surfaces)
+    kCounterTestsFirst = 8,        // + RayKind: the intersection tests by the kind of ray that made them (8..12)
+    kCounterStageFirst = 13,
 };
 
 // 64-bit event counters on the GPU: `count` pairs of uint (lo, hi) in an SSBO bound at RT_BINDING_COUNTERS, added

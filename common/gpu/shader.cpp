@@ -28,6 +28,7 @@ ShaderDefines effect_defines(const Effects& effects) {
     if (effects.absorption) d["ENABLE_ABSORPTION"] = "1";
     if (effects.normal_maps) d["ENABLE_NORMAL_MAPS"] = "1";
     if (effects.cutouts) d["ENABLE_CUTOUTS"] = "1";
+    if (effects.blend) d["ENABLE_BLEND"] = "1";
     return d;
 }
 

@@ -58,7 +58,7 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
         }
     std::printf("traced primary rays: %zu of %d pixels beyond the golden threshold\n", failing, width * height);
     EXPECT_LE(double(failing), 0.01 * width * height);
-    for (int k = 0; k < 4; ++k) EXPECT_EQ(gpu_counters.rays[k], cpu_counters.rays[k]) << "ray kind " << k;
+    for (int k = 0; k < kRayKinds; ++k) EXPECT_EQ(gpu_counters.rays[k], cpu_counters.rays[k]) << "ray kind " << k;
     EXPECT_EQ(gpu_counters.intersection_tests, cpu_counters.intersection_tests);
 }
 
@@ -88,10 +88,12 @@ TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
         FrameResult gpu;
         wavefront.finish_frame(gpu);
 
-        const BruteForceTracer<float> tracer(scene, settings.intersect, true);
+        // As stage 01 does: BLEND as coverage for the closest hits, the cut-out for shadow rays (opacity.h).
+        const BruteForceTracer<float> tracer(scene, settings.intersect, true, settings.effects.blend);
+        const BruteForceTracer<float> shadow_tracer(scene, settings.intersect, true, false);
         WhittedSettings ws;
         ws.effects = settings.effects;
-        const Whitted<float, BruteForceTracer<float>> whitted(scene, tracer, ws);
+        const Whitted<float, BruteForceTracer<float>> whitted(scene, tracer, ws, &shadow_tracer);
         std::vector<HitRecord> cpu;
         RayCounters counters;
         for (int y = 0; y < height; ++y)
@@ -106,6 +108,7 @@ TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
         const HitComparison c = compare_hits(gpu.hits, cpu, bounds);
         EXPECT_TRUE(c.passed(bounds)) << (coincident ? "coincident copies: " : "cutouts: ") << c.report(bounds);
         EXPECT_GT(c.count_a[int(RayKind::Shadow)], 100u);
+        EXPECT_GT(c.count_a[int(RayKind::Transparency)], 10u) << "the BLEND pane's transparency rays";
     }
 }
 

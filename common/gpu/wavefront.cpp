@@ -107,7 +107,8 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     if (settings.max_depth <= 0) effects.reflections = effects.refractions = false;
     shadows_ = effects.shadows && lights_ > 0;
     effects.shadows = shadows_;
-    secondary_ = effects.reflections || effects.refractions;
+    // BLEND coverage's transparency rays go where refraction rays do (shade.comp).
+    secondary_ = effects.reflections || effects.refractions || (effects.blend && settings.max_depth > 0);
     ShaderDefines defines = effect_defines(effects);
     defines.insert_or_assign("RT_INTERSECT_METHOD", std::string(settings.intersect == IntersectMethod::Watertight
                                                                     ? "RT_INTERSECT_WATERTIGHT"
@@ -163,6 +164,10 @@ Program Wavefront::compile(const std::string& pass, bool with_traversal) const {
     std::string file = "common/shaders/wavefront/";
     file += pass;
     if (!with_traversal) return Program::compute(file, defines_);
+    // The shadow pass traces shadow rays only: RT_SHADOW_RAYS gives them the shadow rule of the opacity test
+    // (opacity.glsl: BLEND stays a cut-out for them).
+    ShaderDefines defines = defines_;
+    if (pass == "shadow.comp") defines.insert_or_assign("RT_SHADOW_RAYS", std::string("1"));
     // The traversal first (it defines trace_closest / trace_any), then the pass that calls it.
     std::string source = "// ";
     source.append(file).append(" with the traversal ").append(traversal_.glsl).append("\n");
@@ -170,7 +175,7 @@ Program Wavefront::compile(const std::string& pass, bool with_traversal) const {
     source.append("#include \"").append(file).append("\"\n");
     std::string name = file;
     name.append(" + ").append(traversal_.glsl);
-    return Program::compute_source(name, source, defines_);
+    return Program::compute_source(name, source, defines);
 }
 
 void Wavefront::compile_programs() {

@@ -20,6 +20,7 @@ std::vector<std::string> Effects::names() const {
     if (absorption) out.push_back("absorption");
     if (normal_maps) out.push_back("normal_maps");
     if (cutouts) out.push_back("cutouts");
+    if (blend) out.push_back("blend");
     return out;
 }
 
@@ -77,6 +78,7 @@ bool material_has_normal_map(const Material& m, std::size_t texture_count) {
 
 // docs/shading.md, "Alpha: cut-outs and blending": only MASK and BLEND materials are ever see-through.
 bool material_cuts_out(const Material& m) { return m.alpha_mode != AlphaMode::Opaque; }
+bool material_blends(const Material& m) { return m.alpha_mode == AlphaMode::Blend; }
 
 // Only materials used by at least one triangle count. Shadows are called for whenever a light shines on geometry.
 // Proving that nothing can occlude is rarely possible: even a lone convex mesh shadows itself where its interpolated
@@ -98,6 +100,7 @@ Effects analyze_effects(const Scene& scene) {
         e.absorption = e.absorption || material_absorbs(m, &scene.textures);
         e.normal_maps = e.normal_maps || (material_has_normal_map(m, scene.textures.size()) && !scene.tangents.empty());
         e.cutouts = e.cutouts || material_cuts_out(m);
+        e.blend = e.blend || material_blends(m);
     }
     return e;
 }
@@ -119,6 +122,7 @@ bool parse_list(const std::string& spec, Effects& out, std::string* bad_word) {
         else if (word == "absorption") out.absorption = true;
         else if (word == "normal_maps") out.normal_maps = true;
         else if (word == "cutouts") out.cutouts = true;
+        else if (word == "blend") out.blend = out.cutouts = true;
         else {
             if (bad_word) *bad_word = word;
             return false;
@@ -138,14 +142,14 @@ bool is_valid_effects_spec(const std::string& spec) {
 
 Effects resolve_effects(const std::string& spec, const Scene& scene) {
     if (spec == "auto") return analyze_effects(scene);
-    if (spec == "all") return Effects{true, true, true, true, true, true, true};
+    if (spec == "all") return Effects{true, true, true, true, true, true, true, true};
     if (spec == "none") return Effects{};
     Effects e;
     std::string bad;
     if (!parse_list(spec, e, &bad))
         throw std::invalid_argument("unknown effect '" + bad +
                                     "' in --effects (use auto, all, none or a comma list of shadows, reflections, "
-                                    "refractions, textures, absorption, normal_maps, cutouts)");
+                                    "refractions, textures, absorption, normal_maps, cutouts, blend)");
     return e;
 }
 

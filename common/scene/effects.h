@@ -18,6 +18,9 @@ struct Effects {
     bool absorption = false;    // KHR_materials_volume: Beer-Lambert inside transmitting volumes
     bool normal_maps = false;   // normal textures perturb the shading normal
     bool cutouts = false;       // alphaMode MASK or BLEND: the opacity test where a hit is accepted (common/trace/opacity.h)
+    bool blend = false;         // alphaMode BLEND as coverage: shading weighted by alpha, a transparency ray for the
+                                // rest (docs/shading.md, "Alpha: cut-outs and blending"); implies cutouts. Without
+                                // it, BLEND is read as a cut-out at 0.5.
     bool operator==(const Effects&) const = default;
     std::vector<std::string> names() const;   // e.g. {"shadows", "reflections"}
 };
@@ -26,7 +29,7 @@ struct Effects {
 Effects analyze_effects(const Scene& scene);
 
 // Parses the --effects value: "auto", "all", "none" or a comma list of shadows,reflections,refractions,textures,
-// absorption,normal_maps,cutouts.
+// absorption,normal_maps,cutouts,blend (blend turns cutouts on too).
 // For "auto" returns analyze_effects(scene). Throws std::invalid_argument on an unknown word.
 Effects resolve_effects(const std::string& spec, const Scene& scene);
 bool is_valid_effects_spec(const std::string& spec);
@@ -41,5 +44,6 @@ bool material_transmits(const Material& m, const std::vector<Texture>* textures 
 bool material_absorbs(const Material& m, const std::vector<Texture>* textures = nullptr);
 bool material_has_normal_map(const Material& m, std::size_t texture_count);
 bool material_cuts_out(const Material& m);   // alphaMode MASK or BLEND
+bool material_blends(const Material& m);     // alphaMode BLEND
 
 }  // namespace rt

@@ -126,7 +126,7 @@ TEST(MaterialPredicates, MetallicRoughnessTextureCountsAtItsExtremes) {
 TEST(EffectsSpec, ResolvesAutoAllNoneAndLists) {
     const Scene s = flatten(make_builtin_scene("diffuse"), {});
     EXPECT_EQ(resolve_effects("auto", s), analyze_effects(s));
-    EXPECT_EQ(resolve_effects("all", s), (Effects{true, true, true, true, true, true, true}));
+    EXPECT_EQ(resolve_effects("all", s), (Effects{true, true, true, true, true, true, true, true}));
     EXPECT_EQ(resolve_effects("none", s), Effects{});
     EXPECT_EQ(resolve_effects("textures,shadows", s), (Effects{true, false, false, true}));
     EXPECT_EQ(resolve_effects("reflections", s), (Effects{false, true, false, false}));

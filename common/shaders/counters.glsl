@@ -10,11 +10,12 @@
 #define RT_COUNTER_REFRACTION_RAYS 3u
 #define RT_COUNTER_INTERSECTION_TESTS 4u
 #define RT_COUNTER_LOOPS_CUT 5u           // invocations whose loops the driver cut short (wavefront.glsl)
+#define RT_COUNTER_TRANSPARENCY_RAYS 6u   // continuations through BLEND surfaces (WF_KIND_TRANSPARENCY)
 // The intersection tests again, by the kind of ray that made them: RT_COUNTER_TESTS_FIRST + kind (WF_KIND_* order:
-// primary, shadow, reflection, refraction). Every add to RT_COUNTER_INTERSECTION_TESTS has its twin here, so the
-// four sum to the total (the stats' intersection_tests_by_kind; a test checks it on every stage).
+// primary, shadow, reflection, refraction, transparency). Every add to RT_COUNTER_INTERSECTION_TESTS has its twin
+// here, so the five sum to the total (the stats' intersection_tests_by_kind; a test checks it on every stage).
 #define RT_COUNTER_TESTS_FIRST 8u
-#define RT_COUNTER_STAGE_FIRST 12u
+#define RT_COUNTER_STAGE_FIRST 13u
 
 layout(std430, binding = RT_BINDING_COUNTERS) buffer RtCounters { uint rt_counters[]; };
 

@@ -28,11 +28,17 @@ float surface_opacity(uint triangle, float u, float v) {
 }
 
 // Whether a hit at (u, v) counts: opacity >= the material's cutoff (alpha_cutoff holds alpha_test_cutoff: 0.5 for
-// BLEND). OPAQUE materials skip the lookup.
+// BLEND). OPAQUE materials skip the lookup. With BLEND read as coverage (ENABLE_BLEND), a BLEND surface counts
+// wherever its opacity is above 0, except in the programs that trace shadow rays (RT_SHADOW_RAYS: the wavefront's
+// shadow pass, a traversal's any-hit program), which keep the cut-out (opacity.h says why).
 bool surface_opaque(uint triangle, float u, float v) {
     const Material m = rt_materials[rt_material_ids[triangle]];
     if (m.alpha_mode == RT_ALPHA_OPAQUE) return true;
-    return surface_opacity(triangle, u, v) >= m.alpha_cutoff;
+    const float alpha = surface_opacity(triangle, u, v);
+#if defined(ENABLE_BLEND) && !defined(RT_SHADOW_RAYS)
+    if (m.alpha_mode == RT_ALPHA_BLEND) return alpha > 0.0;
+#endif
+    return alpha >= m.alpha_cutoff;
 }
 #endif
 

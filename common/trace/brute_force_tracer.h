@@ -4,7 +4,8 @@
 //               (the exact hit checks between stages rely on it): triangles are tested in id order and a later one
 //               replaces the hit only when strictly closer.
 //   occluded(): shadow rays only need to know whether anything blocks the light, so stop at the first hit.
-// With cut-outs (Effects::cutouts), a hit where the surface is transparent is no hit (opacity.h).
+// With cut-outs (Effects::cutouts), a hit where the surface is transparent is no hit (opacity.h); with
+// `blend_coverage` (Effects::blend, for the closest-hit tracer), a BLEND surface is hit wherever it covers anything.
 #pragma once
 
 #include <vector>
@@ -18,8 +19,8 @@ namespace rt {
 template <class T>
 class BruteForceTracer {
 public:
-    BruteForceTracer(const Scene& scene, IntersectMethod method, bool cutouts = false)
-        : method_(method), cutouts_(cutouts ? &scene : nullptr) {
+    BruteForceTracer(const Scene& scene, IntersectMethod method, bool cutouts = false, bool blend_coverage = false)
+        : method_(method), cutouts_(cutouts ? &scene : nullptr), blend_coverage_(blend_coverage) {
         vertices_.reserve(scene.positions.size());
         for (const glm::vec3& p : scene.positions) vertices_.emplace_back(p);   // converted to T once
     }
@@ -77,7 +78,9 @@ public:
     }
 
 private:
-    bool opaque(std::size_t i, T u, T v) const { return !cutouts_ || surface_opaque(*cutouts_, i, u, v); }
+    bool opaque(std::size_t i, T u, T v) const {
+        return !cutouts_ || surface_opaque(*cutouts_, i, u, v, blend_coverage_);
+    }
 
     static void record(Ray<T>& r, Hit<T>& hit, std::size_t i, T t, T u, T v) {
         // The watertight test compares t with tmax before dividing, so rounding may let an equal t through: keep the
@@ -92,6 +95,7 @@ private:
 
     IntersectMethod method_;
     const Scene* cutouts_;   // the scene whose opacity the hits pass (opacity.h), or null: every hit counts
+    bool blend_coverage_;    // BLEND surfaces are hit wherever opacity > 0 (not for shadow rays: opacity.h)
     std::vector<Vec3<T>> vertices_;
 };
 

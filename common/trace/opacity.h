@@ -1,5 +1,6 @@
 // Alpha cut-outs (glTF alphaMode MASK, and BLEND as read by docs/shading.md, "Alpha: cut-outs and blending"): where
-// a surface's opacity is below its material's cutoff, a ray passes through it as if the triangle were not there.
+// a surface's opacity is below its material's cutoff, a ray passes through it as if the triangle were not there. A
+// BLEND surface read as coverage (Effects::blend) is there wherever its opacity is above 0, for all but shadow rays.
 // This is the one opacity test every traversal applies where it accepts a candidate hit: stage 01's brute force
 // (brute_force_tracer.h), stage 03's CPU grid (uniform_grid.cpp); common/shaders/opacity.glsl is its GLSL twin, used
 // by every GPU traversal. Only scenes whose triangles use a MASK or BLEND material run it (Effects::cutouts).
@@ -19,8 +20,8 @@
 
 namespace rt {
 
-// The threshold of a material's alpha test: alphaCutoff for MASK, 0.5 for BLEND (a cut-out at half coverage), and 0
-// for OPAQUE (every opacity passes).
+// The threshold of a material's alpha test: alphaCutoff for MASK, 0.5 for BLEND (a cut-out at half coverage: shadow
+// rays, and every ray without Effects::blend), and 0 for OPAQUE (every opacity passes).
 inline float alpha_test_cutoff(const Material& m) {
     switch (m.alpha_mode) {
         case AlphaMode::Mask: return m.alpha_cutoff;
@@ -47,11 +48,18 @@ float surface_opacity(const Scene& scene, std::size_t triangle, T u, T v) {
 }
 
 // Whether a hit at (u, v) on the triangle counts: opacity >= cutoff (glTF: "rendered fully opaque" at the cutoff).
+// With `blend_coverage` (Effects::blend, for every ray but shadow rays), a BLEND surface counts wherever it covers
+// anything (opacity > 0): the hit is shaded with weight alpha and a transparency ray carries the rest (whitted.h).
+// Shadow rays keep the cut-out at 0.5 for BLEND: Whitted's shadow rays are all or nothing, and a coverage-weighted
+// shadow would need the product of (1 - alpha) over every BLEND surface on the segment, in one order that every
+// traversal shares (docs/shading.md, "Alpha: cut-outs and blending").
 template <class T>
-bool surface_opaque(const Scene& scene, std::size_t triangle, T u, T v) {
+bool surface_opaque(const Scene& scene, std::size_t triangle, T u, T v, bool blend_coverage = false) {
     const Material& m = scene.materials[scene.material_ids[triangle]];
     if (m.alpha_mode == AlphaMode::Opaque) return true;
-    return surface_opacity(scene, triangle, u, v) >= alpha_test_cutoff(m);
+    const float alpha = surface_opacity(scene, triangle, u, v);
+    if (blend_coverage && m.alpha_mode == AlphaMode::Blend) return alpha > 0.0f;
+    return alpha >= alpha_test_cutoff(m);
 }
 
 }  // namespace rt

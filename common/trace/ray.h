@@ -27,16 +27,20 @@ struct Hit {
 };
 
 // The kinds of rays a Whitted tracer casts, counted separately in the stats, recorded in hit records
-// (hit_record.h) and, as WF_KIND_*, in the GPU stages' ray queues: one enum, one set of names.
-enum class RayKind : std::uint32_t { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3 };
-constexpr int kRayKinds = 4;
-// "primary", "shadow", "reflection", "refraction": the keys of the stats JSON and the names in printouts.
+// (hit_record.h) and, as WF_KIND_*, in the GPU stages' ray queues: one enum, one set of names. Transparency rays
+// continue a ray through a BLEND surface (docs/shading.md, "Alpha: cut-outs and blending"); only scenes with BLEND
+// materials cast them.
+enum class RayKind : std::uint32_t { Primary = 0, Shadow = 1, Reflection = 2, Refraction = 3, Transparency = 4 };
+constexpr int kRayKinds = 5;
+// "primary", "shadow", "reflection", "refraction", "transparency": the keys of the stats JSON and the names in
+// printouts.
 constexpr const char* ray_kind_name(RayKind kind) {
     switch (kind) {
     case RayKind::Primary: return "primary";
     case RayKind::Shadow: return "shadow";
     case RayKind::Reflection: return "reflection";
     case RayKind::Refraction: return "refraction";
+    case RayKind::Transparency: return "transparency";
     }
     return "unknown";
 }
@@ -45,15 +49,19 @@ constexpr const char* ray_kind_name(RayKind kind) {
 // that made them (indexed by RayKind). Each stage fills the total and the kinds from separate adds, so that the kinds
 // sum to the total is a check on the stage (the stats' intersection_tests_by_kind; tests/run_cli_case.cmake).
 struct RayCounters {
-    std::uint64_t rays[4] = {0, 0, 0, 0};
+    std::uint64_t rays[kRayKinds] = {};
     std::uint64_t intersection_tests = 0;
-    std::uint64_t tests_by_kind[4] = {0, 0, 0, 0};
+    std::uint64_t tests_by_kind[kRayKinds] = {};
     void add(const RayCounters& o) {
-        for (int i = 0; i < 4; ++i) rays[i] += o.rays[i];
+        for (int i = 0; i < kRayKinds; ++i) rays[i] += o.rays[i];
         intersection_tests += o.intersection_tests;
-        for (int i = 0; i < 4; ++i) tests_by_kind[i] += o.tests_by_kind[i];
+        for (int i = 0; i < kRayKinds; ++i) tests_by_kind[i] += o.tests_by_kind[i];
     }
-    std::uint64_t total_rays() const { return rays[0] + rays[1] + rays[2] + rays[3]; }
+    std::uint64_t total_rays() const {
+        std::uint64_t n = 0;
+        for (int i = 0; i < kRayKinds; ++i) n += rays[i];
+        return n;
+    }
 };
 
 // True when every component is finite (no NaN, no Inf).

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 #include "hit_record.h"
@@ -21,6 +22,7 @@
 #include "intersect.h"
 #include "normal_map.h"
 #include "offset.h"
+#include "opacity.h"
 #include "shading.h"
 #include "texture_transform.h"
 
@@ -104,33 +106,66 @@ SurfacePoint<T> surface_point(const Scene& scene, const Ray<T>& ray, const Hit<T
 template <class T, class Tracer>
 class Whitted {
 public:
-    Whitted(const Scene& scene, const Tracer& tracer, const WhittedSettings& settings)
-        : scene_(scene), tracer_(tracer), settings_(settings) {}
+    // `shadow_tracer`, when given, traces the shadow rays (stage 01 with BLEND coverage: shadow rays keep the cut-out
+    // at 0.5, opacity.h); otherwise `tracer` traces every ray.
+    Whitted(const Scene& scene, const Tracer& tracer, const WhittedSettings& settings,
+            const Tracer* shadow_tracer = nullptr)
+        : scene_(scene), tracer_(tracer), shadow_tracer_(shadow_tracer ? *shadow_tracer : tracer), settings_(settings) {}
 
     // Radiance arriving along `ray`; `weight` is the product of the coefficients on the path so far (the path stops
     // spawning rays once a child's weight falls below the cut-off). With a `log`, every traced ray is recorded under
     // its `path` in the pixel's ray tree (hit_record.h: 1 for the primary ray, 2p and 2p + 1 for the reflection and
-    // refraction children of path p; shadow rays carry their parent's path and their light's index).
+    // refraction children of path p; shadow rays carry their parent's path and their light's index). `kind` is the
+    // ray's kind when its path does not say it (a transparency ray); by default camera rays are primary and children
+    // reflection or refraction rays by their path's parity.
     glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& path_weight, RayCounters& counters,
-                       const HitLog* log = nullptr, std::uint32_t path = 1) const {
+                       const HitLog* log = nullptr, std::uint32_t path = 1,
+                       std::optional<RayKind> kind = std::nullopt) const {
         Hit<T> hit;
         const std::uint64_t tests_before = counters.intersection_tests;
         const bool found = tracer_.closest(ray, hit, counters);
         // The tests by kind: only camera rays start at depth 0; children keep their path's parity (2p, 2p + 1) even
         // where the path number wraps.
-        const RayKind ray_kind = depth == 0   ? RayKind::Primary
+        const RayKind ray_kind = kind ? *kind
+                                 : depth == 0   ? RayKind::Primary
                                  : (path & 1u) ? RayKind::Refraction
                                                : RayKind::Reflection;
         const std::uint64_t tests = counters.intersection_tests - tests_before;
         counters.tests_by_kind[int(ray_kind)] += tests;
         if (log) {
-            const RayKind kind = path == 1   ? RayKind::Primary
-                                       : path & 1u ? RayKind::Refraction
-                                                   : RayKind::Reflection;
-            log->add(path, kind, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f, tests);
+            const RayKind logged = kind ? *kind
+                                   : path == 1 ? RayKind::Primary
+                                   : path & 1u ? RayKind::Refraction
+                                               : RayKind::Reflection;
+            log->add(path, logged, 0, ray, found ? hit.triangle : -1, found ? float(hit.t) : 0.0f, tests);
         }
         if (!found) return miss_radiance(scene_, glm::vec3(ray.direction));   // environment.h
-        SurfacePoint<T> sp = surface_point(scene_, ray, hit);
+        const SurfacePoint<T> sp = surface_point(scene_, ray, hit);
+
+        // BLEND as coverage (docs/shading.md, "Alpha: cut-outs and blending"): the surface is shaded with weight
+        // alpha, and a transparency ray continues the ray through it with weight 1 - alpha (depth + 1, path
+        // 2p + 1: a BLEND surface does not refract, so the slot is free). Without Effects::blend BLEND is a cut-out.
+        if (!settings_.effects.blend || scene_.materials[sp.material].alpha_mode != AlphaMode::Blend)
+            return shade(ray, hit, sp, depth, path_weight, counters, log, path, false);
+        const float alpha = surface_opacity(scene_, std::size_t(hit.triangle), hit.u, hit.v);
+        glm::vec3 color = alpha * shade(ray, hit, sp, depth, path_weight * alpha, counters, log, path, true);
+        const glm::vec3 through_weight = path_weight * (1.0f - alpha);
+        if (depth < settings_.max_depth && max_component(through_weight) > settings_.cutoff) {
+            Ray<T> through;   // the same direction, from the far side of the surface
+            through.direction = ray.direction;
+            through.origin = spawn_origin(sp, ray.direction);
+            counters.rays[int(RayKind::Transparency)]++;
+            color += (1.0f - alpha) * radiance(through, depth + 1, through_weight, counters, log, 2 * path + 1,
+                                               RayKind::Transparency);
+        }
+        return color;
+    }
+
+private:
+    // The hit's own light: emission, ambient, the lights its shadow rays reach, and its reflection and refraction
+    // rays (none for a BLEND surface read as coverage: `blend_surface`).
+    glm::vec3 shade(const Ray<T>& ray, const Hit<T>& hit, SurfacePoint<T> sp, int depth, const glm::vec3& path_weight,
+                    RayCounters& counters, const HitLog* log, std::uint32_t path, bool blend_surface) const {
         const Material& material = scene_.materials[sp.material];
         // Absorption (docs/shading.md): a ray that reaches the back face of an absorbing volume travelled inside it
         // for hit.t; what comes back along it, and the weight its children inherit, keep exp(-sigma_a t).
@@ -146,7 +181,8 @@ public:
         }
         SurfaceTexels texels;
         if (settings_.effects.textures) texels = sample_surface_textures(material, scene_.textures, sp.uv);
-        const SurfaceCoefficients s = surface_coefficients(material, texels);
+        SurfaceCoefficients s = surface_coefficients(material, texels);
+        if (blend_surface) s.transmission = 0.0f;   // its see-through part is the transparency ray
         const glm::vec3 d = glm::vec3(ray.direction);
         const glm::vec3 n = sp.shading_normal;
 
@@ -167,7 +203,7 @@ public:
                                   : glm::length(Vec3<T>(light.position) - shadow.origin);
                 counters.rays[int(RayKind::Shadow)]++;
                 const std::uint64_t shadow_tests_before = counters.intersection_tests;
-                const bool occluded = tracer_.occluded(shadow, counters);
+                const bool occluded = shadow_tracer_.occluded(shadow, counters);
                 const std::uint64_t shadow_tests = counters.intersection_tests - shadow_tests_before;
                 counters.tests_by_kind[int(RayKind::Shadow)] += shadow_tests;
                 if (log)
@@ -216,6 +252,7 @@ public:
         // END EXERCISE
     }
 
+public:
     // Weights of the reflected and refracted rays (docs/shading.md): metals reflect their base colour; the
     // dielectric part reflects F and, where it transmits, refracts (1 - F), tinted by the base colour on entry.
     struct ReflectRefract {
@@ -246,6 +283,7 @@ private:
 
     const Scene& scene_;
     const Tracer& tracer_;
+    const Tracer& shadow_tracer_;
     WhittedSettings settings_;
 };
 

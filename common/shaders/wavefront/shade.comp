@@ -4,15 +4,19 @@
 // Each term goes to the pixel weighted by the path's weight. The light terms wait for their shadow ray
 // (ENABLE_SHADOWS): the shadow pass adds them when nothing blocks the light. kr C(reflected) and kt C(refracted)
 // become rays of the next bounce (ENABLE_REFLECTIONS, ENABLE_REFRACTIONS), spawned while depth < max_depth and the
-// child's weight is above the cut-off, as Whitted::radiance does. Code for an effect that is off is not compiled.
+// child's weight is above the cut-off, as Whitted::radiance does; on a BLEND surface read as coverage (ENABLE_BLEND)
+// all of it is weighted by alpha and a transparency ray carries 1 - alpha on. Code for an effect that is off is not
+// compiled.
 //
 // Outputs go to fixed slots of wf_ray_slots (flag 1 when used), so that compaction keeps them grouped and in the
-// order of the hits: for hit i of n, its reflection ray at slot i, its refraction ray at n + i, its shadow ray
-// towards light wf_light_first + l at wf_shadow_slot_base + l n + i. When the shadow slots of all lights would not
-// fit in a storage block, rt::gpu::Wavefront runs the pass once per range of lights; only the last run
-// (wf_shade_local = 1) adds the emission and ambient terms and spawns reflection and refraction rays.
+// order of the hits: for hit i of n, its reflection ray at slot i, its refraction (or transparency) ray at n + i,
+// its shadow ray towards light wf_light_first + l at wf_shadow_slot_base + l n + i. When the shadow slots of all
+// lights would not fit in a storage block, rt::gpu::Wavefront runs the pass once per range of lights; only the last
+// run (wf_shade_local = 1) adds the emission and ambient terms and spawns reflection, refraction and transparency
+// rays.
 #include "wavefront.glsl"
 #include "whitted.glsl"
+#include "opacity.glsl"   // surface_opacity, for BLEND coverage (compiled only with ENABLE_CUTOUTS)
 
 layout(local_size_x = 64) in;
 
@@ -22,7 +26,7 @@ uniform uint wf_shadow_slot_base;
 uniform int wf_shade_local;
 
 // Rays spawned by this thread, added to the counters once at the end.
-uint shadow_rays = 0u, reflection_rays = 0u, refraction_rays = 0u;
+uint shadow_rays = 0u, reflection_rays = 0u, refraction_rays = 0u, transparency_rays = 0u;
 
 void shade(uint i, WavefrontHit entry) {
     const WavefrontRay incoming = entry.ray;
@@ -32,14 +36,25 @@ void shade(uint i, WavefrontHit entry) {
     hit.t = entry.t;
     hit.u = entry.u;
     hit.v = entry.v;
-    const WhittedSurface w = whitted_surface(ray, hit);
+    WhittedSurface w = whitted_surface(ray, hit);
     const SurfacePoint sp = w.point;
     const vec3 d = ray.direction;
     const vec3 n = sp.shading_normal;
+    // BLEND as coverage (Whitted::radiance; docs/shading.md, "Alpha: cut-outs and blending"): the surface's own
+    // terms and children take weight alpha, a transparency ray the rest; a BLEND surface does not refract.
+    float coverage = 1.0;
+#ifdef ENABLE_BLEND
+    const bool blend_surface = rt_materials[sp.material].alpha_mode == RT_ALPHA_BLEND;
+    if (blend_surface) {
+        coverage = surface_opacity(uint(hit.triangle), hit.u, hit.v);
+        w.coefficients.transmission = 0.0;   // its see-through part is the transparency ray
+    }
+#endif
 #ifdef ENABLE_ABSORPTION
-    const vec3 weight = incoming.weight * whitted_absorption(w, hit.t);   // the segment this ray ran inside a volume
+    // whitted_absorption: the segment this ray ran inside a volume
+    const vec3 weight = incoming.weight * coverage * whitted_absorption(w, hit.t);
 #else
-    const vec3 weight = incoming.weight;
+    const vec3 weight = incoming.weight * coverage;
 #endif
 
     const uint n_hits = wf_input_count;
@@ -71,11 +86,22 @@ void shade(uint i, WavefrontHit entry) {
     if (wf_shade_local == 0) return;
     wf_accumulate(incoming.pixel, weight * local);
 
-#if defined(ENABLE_REFLECTIONS) || defined(ENABLE_REFRACTIONS)
+#if defined(ENABLE_REFLECTIONS) || defined(ENABLE_REFRACTIONS) || defined(ENABLE_BLEND)
     wf_flags[i] = 0u;
     wf_flags[n_hits + i] = 0u;
     const uint depth = wf_depth(incoming);
     if (int(depth) >= wf_max_depth) return;
+#ifdef ENABLE_BLEND
+    // The transparency ray: straight on through the surface, in the refraction ray's slot (path 2p + 1).
+    const vec3 through_weight = incoming.weight * (1.0 - coverage);
+    if (blend_surface && whitted_max_component(through_weight) > wf_cutoff) {
+        wf_ray_slots[n_hits + i] = wf_make_ray(whitted_spawn_origin(sp, d, wf_offset, wf_epsilon), d, RT_INFINITY,
+                                               through_weight, incoming.pixel, depth + 1u, WF_KIND_TRANSPARENCY,
+                                               2u * incoming.path + 1u, 0u);
+        wf_flags[n_hits + i] = 1u;
+        ++transparency_rays;
+    }
+#endif
     // BEGIN EXERCISE 01.whitted_recursion: the GLSL twin of Whitted::radiance's secondary rays, as a wavefront pass:
     // with k = whitted_coefficients(...), write a reflection ray (whitted_reflection_dir) to wf_ray_slots[i] and a
     // refraction ray (whitted_refraction_dir; none at total internal reflection) to wf_ray_slots[n_hits + i], each
@@ -117,5 +143,6 @@ void main() {
     rt_counter_add(RT_COUNTER_SHADOW_RAYS, shadow_rays);
     rt_counter_add(RT_COUNTER_REFLECTION_RAYS, reflection_rays);
     rt_counter_add(RT_COUNTER_REFRACTION_RAYS, refraction_rays);
+    rt_counter_add(RT_COUNTER_TRANSPARENCY_RAYS, transparency_rays);
     wf_check_loop_budget();
 }

@@ -32,6 +32,7 @@
 #define WF_KIND_SHADOW 1u
 #define WF_KIND_REFLECTION 2u
 #define WF_KIND_REFRACTION 3u
+#define WF_KIND_TRANSPARENCY 4u   // the continuation through a BLEND surface
 
 // The pixel of an unused slot (a tile slot outside the image).
 #define WF_NO_PIXEL 0xffffffffu
@@ -39,8 +40,8 @@
 // A queued ray (64 bytes, std430; WavefrontRay in wavefront.h). For shadow rays `weight` is the light's whole
 // contribution to the pixel (path weight times the unshadowed light), added when nothing blocks the ray.
 // `path` and `light` name the ray in the ray tree (common/trace/hit_record.h): path 1 is the primary ray, 2p and 2p + 1
-// the reflection and refraction children of path p (meaningful up to depth 30); a shadow ray has its parent hit's
-// path and the index of its light.
+// the reflection and refraction (on a BLEND surface: transparency) children of path p (meaningful up to depth 30); a
+// shadow ray has its parent hit's path and the index of its light.
 struct WavefrontRay {
     vec3 origin; float tmax;
     vec3 direction; uint pixel;
