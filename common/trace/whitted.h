@@ -110,7 +110,10 @@ public:
     // at 0.5, opacity.h); otherwise `tracer` traces every ray.
     Whitted(const Scene& scene, const Tracer& tracer, const WhittedSettings& settings,
             const Tracer* shadow_tracer = nullptr)
-        : scene_(scene), tracer_(tracer), shadow_tracer_(shadow_tracer ? *shadow_tracer : tracer), settings_(settings) {}
+        : scene_(scene),
+          tracer_(tracer),
+          shadow_tracer_(shadow_tracer ? *shadow_tracer : tracer),
+          settings_(settings) {}
 
     // Radiance arriving along `ray`; `weight` is the product of the coefficients on the path so far (the path stops
     // spawning rays once a child's weight falls below the cut-off). With a `log`, every traced ray is recorded under
