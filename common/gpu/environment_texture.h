@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "../scene/environment.h"
+#include "../scene/environment_map.h"
 #include "gl_check.h"
 
 namespace rt::gpu {

@@ -305,8 +305,8 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
                 std::uint32_t idx[3];
                 bool valid = true;
                 for (int k = 0; k < 3; ++k) {
-                    const std::size_t corner = t + std::size_t(k);
-                    idx[k] = prim.indices.empty() ? std::uint32_t(corner) : prim.indices[corner];
+                    const std::size_t index_slot = t + std::size_t(k);
+                    idx[k] = prim.indices.empty() ? std::uint32_t(index_slot) : prim.indices[index_slot];
                     if (idx[k] >= nv) valid = false;
                 }
                 if (!valid) { ++dropped; continue; }

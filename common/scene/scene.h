@@ -19,7 +19,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "environment.h"
+#include "common/scene/environment_map.h"
 
 namespace rt {
 

@@ -30,7 +30,7 @@ glm::vec2 environment_uv(const glm::vec3& d, const glm::vec2& rotation) {
 
 namespace {
 
-glm::vec4 texel(const Environment& e, int x, int y) {
+glm::vec4 environment_texel(const Environment& e, int x, int y) {
     x = x < 0 ? x + e.width : (x >= e.width ? x - e.width : x);   // wrap in u (x is in [-1, width])
     y = y < 0 ? 0 : (y >= e.height ? e.height - 1 : y);           // clamp in v
     return e.texels[std::size_t(y) * std::size_t(e.width) + std::size_t(x)];
@@ -46,8 +46,8 @@ glm::vec3 sample_environment(const Environment& e, const glm::vec2& uv) {
     const float x0f = std::floor(sx), y0f = std::floor(sy);
     const float ax = sx - x0f, ay = sy - y0f;
     const int x0 = int(x0f), y0 = int(y0f);
-    const glm::vec4 top = glm::mix(texel(e, x0, y0), texel(e, x0 + 1, y0), ax);
-    const glm::vec4 bottom = glm::mix(texel(e, x0, y0 + 1), texel(e, x0 + 1, y0 + 1), ax);
+    const glm::vec4 top = glm::mix(environment_texel(e, x0, y0), environment_texel(e, x0 + 1, y0), ax);
+    const glm::vec4 bottom = glm::mix(environment_texel(e, x0, y0 + 1), environment_texel(e, x0 + 1, y0 + 1), ax);
     return glm::vec3(glm::mix(top, bottom, ay));
 }
 

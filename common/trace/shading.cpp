@@ -18,7 +18,7 @@ const std::array<float, 256>& srgb_table() {
     return table;
 }
 
-glm::vec4 texel(const Texture& tex, int x, int y, bool srgb) {
+glm::vec4 texture_texel(const Texture& tex, int x, int y, bool srgb) {
     // REPEAT wrapping for any integer, negative included.
     x = ((x % tex.width) + tex.width) % tex.width;
     y = ((y % tex.height) + tex.height) % tex.height;
@@ -33,14 +33,14 @@ glm::vec4 sample(const Texture& tex, glm::vec2 uv, bool srgb) {
     // Keep only the fractional part first so huge UVs do not lose the texel position to float rounding.
     uv -= glm::floor(uv);
     const float fx = uv.x * float(tex.width), fy = uv.y * float(tex.height);
-    if (tex.nearest) return texel(tex, int(fx), int(fy), srgb);
+    if (tex.nearest) return texture_texel(tex, int(fx), int(fy), srgb);
     // Bilinear between the four texel centres around (fx, fy).
     const float sx = fx - 0.5f, sy = fy - 0.5f;
     const float x0f = std::floor(sx), y0f = std::floor(sy);
     const float ax = sx - x0f, ay = sy - y0f;
     const int x0 = int(x0f), y0 = int(y0f);
-    const glm::vec4 top = glm::mix(texel(tex, x0, y0, srgb), texel(tex, x0 + 1, y0, srgb), ax);
-    const glm::vec4 bottom = glm::mix(texel(tex, x0, y0 + 1, srgb), texel(tex, x0 + 1, y0 + 1, srgb), ax);
+    const glm::vec4 top = glm::mix(texture_texel(tex, x0, y0, srgb), texture_texel(tex, x0 + 1, y0, srgb), ax);
+    const glm::vec4 bottom = glm::mix(texture_texel(tex, x0, y0 + 1, srgb), texture_texel(tex, x0 + 1, y0 + 1, srgb), ax);
     return glm::mix(top, bottom, ay);
 }
 
