@@ -7,7 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "common/app/options.h"
 #include "common/app/pixel_samples.h"
 #include "common/app/progress.h"

@@ -29,7 +29,7 @@ Frame whitted_frame(int width, int height) {
 // The smallest GPU stage: brute force, primary rays traced by the shared pipeline.
 class TracedPrimaryStage : public gpu::GpuStage {
 public:
-    TracedPrimaryStage() : GpuStage({"common/shaders/brute_force.glsl", {}, {}}) {}
+    TracedPrimaryStage() : GpuStage({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {}
 
 protected:
     void render_sample(const Scene&, const RenderSettings&, glm::vec2 offset) override {

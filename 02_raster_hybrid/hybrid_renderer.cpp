@@ -3,9 +3,9 @@
 namespace rt {
 
 // The traversal stage 02 plugs into the wavefront pipeline: every ray against every triangle, in slices of
-// triangles (common/gpu/brute_force_traversal.h). The lambda reads the scene the frame uploaded.
+// triangles (brute_force_traversal.h). The lambda reads the scene the frame uploaded.
 HybridRenderer::HybridRenderer()
-    : GpuStage({}), brute_force_([this] { return gpu_scene().triangle_count(); }) {
+    : RasterizedPrimaryStage({}), brute_force_([this] { return gpu_scene().triangle_count(); }) {
     set_traversal(brute_force_.traversal());
 }
 HybridRenderer::~HybridRenderer() = default;

@@ -1,11 +1,11 @@
 // Stage 02 on a scene beyond what one GPU invocation may loop over on llvmpipe (65,535 iterations in all; docs/gpu.md,
-// "Known limit"): its brute force traces in slices of triangles (common/gpu/brute_force_traversal.h), so every
+// "Known limit"): its brute force traces in slices of triangles (02_raster_hybrid/brute_force_traversal.h), so every
 // secondary ray still finds exactly what stage 01's brute force finds, with the bounds of the hits tests
 // (within 64 ulps, as tests/hits.cmake compares 02 with 01).
 #include <gtest/gtest.h>
 
 #include "01_naive/naive_renderer.h"
-#include "common/gpu/brute_force_traversal.h"
+#include "02_raster_hybrid/brute_force_traversal.h"
 #include "common/gpu/gpu_stage.h"
 #include "common/gpu/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"

@@ -9,7 +9,7 @@
 #include "common/gpu/gpu_test_context.h"
 #include "common/scene/builtin_builders.h"
 #include "common/scene/effects.h"
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "hybrid_renderer.h"
 
 namespace rt {

@@ -9,12 +9,12 @@
 
 #include <cstdio>
 
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
-#include "common/gpu/gbuffer.h"
+#include "02_raster_hybrid/gbuffer.h"
 #include "hybrid_renderer.h"
 
 namespace rt {

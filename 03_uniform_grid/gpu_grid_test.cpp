@@ -210,10 +210,10 @@ TEST(GridRenderer, ImageAndHitsEqualStage02s) {
     expect_same_frame(render_grid(s, settings, {}), stage02.render(s, settings), "03 vs 02");
 }
 
-// Traced primary rays: the same frame as brute force tracing them (common/brute_force.glsl through the same pipeline).
+// Traced primary rays: the same frame as brute force tracing them (02_raster_hybrid/shaders/brute_force.glsl through the same pipeline).
 class TracedBruteForce : public gpu::GpuStage {
 public:
-    TracedBruteForce() : GpuStage({"common/shaders/brute_force.glsl", {}, {}}) {}
+    TracedBruteForce() : GpuStage({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {}
 
 protected:
     void render_sample(const Scene&, const RenderSettings&, glm::vec2 offset) override {

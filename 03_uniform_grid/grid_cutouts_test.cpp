@@ -4,7 +4,7 @@
 #include <random>
 
 #include "common/scene/builtin_scenes.h"
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "uniform_grid.h"
 
 namespace rt {

@@ -25,11 +25,11 @@ glm::ivec3 parse_grid_res(const std::string& text) {
 }
 
 GridRenderer::GridRenderer()
-    : GpuStage({"03_uniform_grid/shaders/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }, {}, {}, "grid cells"}) {}
+    : RasterizedPrimaryStage({"03_uniform_grid/shaders/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }, {}, {}, "grid cells"}) {}
 GridRenderer::~GridRenderer() = default;
 
 void GridRenderer::add_options(CLI::App& app) {
-    GpuStage::add_options(app);
+    RasterizedPrimaryStage::add_options(app);
     app.add_option("--grid-lambda", grid_options.lambda,
                    "Grid cells per triangle for the resolution heuristic (changes the cost, never the image)")
         ->capture_default_str()
@@ -97,7 +97,7 @@ void GridRenderer::render_sample(const Scene& scene, const RenderSettings& setti
 
 std::vector<std::string> GridRenderer::stage_programs() const {
     std::vector<std::string> programs;
-    if (!grid_options.trace_primary) programs.push_back("common/shaders/raster/primary_hits.comp");
+    if (!grid_options.trace_primary) programs = RasterizedPrimaryStage::stage_programs();
     if (built_)
         for (const char* p : {"grid_count.comp", "grid_write.comp", "grid_ranges.comp"})
             programs.push_back(std::string("03_uniform_grid/shaders/") + p);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "common/gpu/gpu_stage.h"
+#include "02_raster_hybrid/rasterized_primary_stage.h"
 #include "gpu_grid.h"
 
 namespace rt {
@@ -22,7 +22,7 @@ struct GridOptions {
 // Parses "X,Y,Z" (each 1..kMaxGridResPerAxis); throws std::invalid_argument with a one-line message otherwise.
 glm::ivec3 parse_grid_res(const std::string& text);
 
-class GridRenderer : public gpu::GpuStage {
+class GridRenderer : public RasterizedPrimaryStage {
 public:
     GridRenderer();
     ~GridRenderer() override;

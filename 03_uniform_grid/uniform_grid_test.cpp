@@ -205,7 +205,7 @@ TEST(Dda, RandomRaysFollowTheExactWalkAndNeverReachTheBound) {
 
 // ---------------------------------------------------------------------------------------------------------------
 // The grid's closest hit is brute force's, exactly (the rule grid.glsl follows). Brute force as stage 02 runs it
-// (common/shaders/brute_force.glsl, the CPU BruteForceTracer's rule): every triangle in id order, each hit shrinking
+// (02_raster_hybrid/shaders/brute_force.glsl, the CPU BruteForceTracer's rule): every triangle in id order, each hit shrinking
 // tmax for the next and kept only when strictly closer (the scaled test may let an equal t through), so at an equal t
 // the lowest id stays.
 Hit<float> brute_force_as_02(const Scene& s, Ray<float> ray) {

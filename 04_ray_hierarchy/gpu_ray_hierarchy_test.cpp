@@ -222,7 +222,7 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
     settings.width = 64;
     settings.height = 48;
     settings.effects = analyze_effects(scene);
-    gpu::Wavefront wavefront({"common/shaders/brute_force.glsl", {}, {}});
+    gpu::Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
 
     // Rays from inside the box: random, identical, one origin, opposite, zero/NaN/infinite directions.
@@ -406,7 +406,7 @@ TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
 // A built-in scene on the GPU with the wavefront pipeline's frame begun over it: what GpuRayHierarchy::trace needs
 // besides the rays, for the tests that trace batches of their own.
 struct TraceSetup {
-    explicit TraceSetup(const std::string& name) : scene(scene_at(name)), wavefront({"common/shaders/brute_force.glsl", {}, {}}) {
+    explicit TraceSetup(const std::string& name) : scene(scene_at(name)), wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {
         gpu_scene.upload(scene);
         RenderSettings settings;
         settings.effects = analyze_effects(scene);

@@ -7,7 +7,7 @@
 namespace rt {
 
 RayHierarchyRenderer::RayHierarchyRenderer()
-    : GpuStage({"common/shaders/brute_force.glsl", {}, {},
+    : RasterizedPrimaryStage({"", {}, {},
                 [this](const gpu::BatchTraceInputs& in) { trace_batch(in, false); },
                 [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); },
                 "leaf pairs"}) {}   // --pixel: the ray's (ray, triangle) pairs at level 0, its own node tests
@@ -24,7 +24,7 @@ std::string RayHierarchyRenderer::unsupported(const Scene&, const RenderSettings
 }
 
 void RayHierarchyRenderer::add_options(CLI::App& app) {
-    GpuStage::add_options(app);
+    RasterizedPrimaryStage::add_options(app);
     app.add_option("--branching", hierarchy_options.branching, "Children per node of the ray hierarchy: 4, 8 or 16")
         ->capture_default_str()
         ->check(whole_number_of({4, 8, 16}));
@@ -72,7 +72,7 @@ void RayHierarchyRenderer::render_sample(const Scene& scene, const RenderSetting
 }
 
 std::vector<std::string> RayHierarchyRenderer::stage_programs() const {
-    std::vector<std::string> programs = {"common/shaders/raster/primary_hits.comp"};
+    std::vector<std::string> programs = RasterizedPrimaryStage::stage_programs();
     for (std::string& p : GpuRayHierarchy::program_names()) programs.push_back(std::move(p));
     return programs;
 }

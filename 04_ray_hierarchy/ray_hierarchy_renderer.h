@@ -1,4 +1,5 @@
-// Stage 04: the ray-space hierarchy (Roger, Assarsson & Holzschuch 2007). Primary visibility is stage 02's G-buffer;
+// Stage 04: the ray-space hierarchy (Roger, Assarsson & Holzschuch 2007). Primary visibility is stage 02's G-buffer
+// (it derives from 02's RasterizedPrimaryStage);
 // every bounce of secondary rays (shadow, reflection, refraction) is traced through a hierarchy built over that
 // bounce's own rays (gpu_ray_hierarchy.h), through the wavefront pipeline's batch hook (Traversal::trace_batch and
 // shadow_batch). Nothing is built over the triangles but their bounding spheres, so a moving scene costs nothing
@@ -9,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "common/gpu/gpu_stage.h"
+#include "02_raster_hybrid/rasterized_primary_stage.h"
 #include "gpu_ray_hierarchy.h"
 
 namespace rt {
 
-class RayHierarchyRenderer : public gpu::GpuStage {
+class RayHierarchyRenderer : public RasterizedPrimaryStage {
 public:
     RayHierarchyRenderer();
     ~RayHierarchyRenderer() override;
@@ -27,7 +28,6 @@ public:
 protected:
     void build(const Scene& scene, const RenderSettings& settings) override;
     void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
-    bool rasterizes_primary_rays() const override { return true; }
     std::vector<std::string> stage_programs() const override;
     void add_stage_stats(FrameResult& result) override;
     // One batch of the pipeline through the hierarchy (stage 05 overrides it to sort the batch's rays first).

@@ -40,7 +40,7 @@ bool grid_intersect(Ray ray, WatertightRay w, uint i, out float t, out float u, 
     return hit && cutout_opaque(i, u, v);   // a transparent hit is no hit (opacity.glsl): both phases stay exact
 }
 
-// Closest hit, exactly brute force's (common/brute_force.glsl: triangles in id order, each hit shrinking tmax for
+// Closest hit, exactly brute force's (02_raster_hybrid/shaders/brute_force.glsl: triangles in id order, each hit shrinking tmax for
 // the next). grid_closest_hit in uniform_grid.cpp is the C++ twin and explains the two phases:
 //   1. the walk tests each visited cell's triangles with the ray's own tmax and keeps the smallest t (ties: lowest
 //      id); a hit may lie beyond the current cell (its triangle spans cells) where a closer one may wait, so the walk

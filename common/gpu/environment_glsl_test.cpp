@@ -16,7 +16,7 @@
 #include "../scene/effects.h"
 #include "../trace/environment.h"
 #include "../trace/shading.h"
-#include "gbuffer.h"
+#include "02_raster_hybrid/gbuffer.h"
 #include "glsl_test_harness.h"
 #include "gpu_scene.h"
 #include "gpu_test_context.h"
@@ -155,7 +155,7 @@ Frame render(const Scene& scene, GpuScene& gpu_scene) {
     settings.effects = analyze_effects(scene);
     gpu_scene.upload(scene);
     GBuffer gbuffer;
-    Wavefront wavefront(Traversal{"common/shaders/brute_force.glsl", {}, {}, {}, {}});
+    Wavefront wavefront(Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
     gbuffer.render(gpu_scene, scene.camera, scene.bounds, settings.width, settings.height, glm::vec2(0.5f));
     gpu_scene.bind();

@@ -8,7 +8,6 @@
 #include <CLI/CLI.hpp>
 
 #include "../app/pixel_samples.h"
-#include "gbuffer.h"
 #include "shader.h"
 
 namespace rt::gpu {
@@ -18,7 +17,6 @@ struct GpuStage::Shared {
     GpuScene scene;
     Wavefront wavefront;
     GpuTimer timer;
-    std::unique_ptr<GBuffer> gbuffer;   // stages that rasterize their primary rays, from their first sample
 };
 
 GpuStage::GpuStage(Traversal traversal) : traversal_(std::move(traversal)) {}
@@ -63,20 +61,6 @@ std::string GpuStage::renderer_name() const {
 GpuScene& GpuStage::gpu_scene() { return shared_->scene; }
 Wavefront& GpuStage::wavefront() { return shared_->wavefront; }
 GpuTimer& GpuStage::timer() { return shared_->timer; }
-
-void GpuStage::rasterize_and_shade_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) {
-    Shared& s = *shared_;
-    if (!s.gbuffer) s.gbuffer = std::make_unique<GBuffer>();
-    {
-        // Primary visibility by rasterization into the G-buffer.
-        auto raster = s.timer.scope("raster");
-        s.gbuffer->render(s.scene, scene.camera, scene.bounds, settings.width, settings.height, offset);
-        s.wavefront.record_pass("gbuffer");
-    }
-    // The pixels become the pipeline's primary hits; then shading and the secondary rays, bounce by bounce.
-    s.scene.bind();
-    s.gbuffer->shade_sample(s.wavefront, offset);
-}
 
 void GpuStage::build(const Scene&, const RenderSettings&) {}
 

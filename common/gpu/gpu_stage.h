@@ -5,8 +5,10 @@
 //
 // A stage derives from it and writes only its per-frame code:
 //   build()          its acceleration structure over the uploaded scene (optional: brute force has none),
-//   render_sample()  one sample: its primary hits (rasterized, or wavefront().trace_camera_sample) and the passes,
-// and says what it adds to the stats (its own programs, whether its primary rays are rasterized).
+//   render_sample()  one sample: its primary hits and the passes after them,
+// and says what it adds to the stats (its own programs, whether its primary rays are rasterized). Stages 02-05
+// rasterize their primary rays: they derive from stage 02's RasterizedPrimaryStage
+// (02_raster_hybrid/rasterized_primary_stage.h), which derives from this class.
 //
 // A frame: upload (timed "upload") -> wavefront().begin_frame -> build() -> render_sample() per sample -> the
 // image. Phases are GPU time (GL timestamps) of the passes in them: the stage times its own ("build", "raster"),
@@ -54,8 +56,8 @@ protected:
     // The stage's acceleration structure over the uploaded scene (gpu_scene()); time its passes with
     // timer().scope("build").
     virtual void build(const Scene& scene, const RenderSettings& settings);
-    // One sample through `offset` in each pixel (0.5, 0.5 = the centre): rasterize_and_shade_sample() for
-    // rasterized primary hits, or wavefront().trace_camera_sample(offset) to trace them through the traversal.
+    // One sample through `offset` in each pixel (0.5, 0.5 = the centre): wavefront().trace_camera_sample(offset)
+    // traces the camera rays through the traversal; stage 02's RasterizedPrimaryStage rasterizes them instead.
     virtual void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) = 0;
     // True when the primary rays are rasterized, not traced (rays.rasterized, and left out of mrays_per_s).
     virtual bool rasterizes_primary_rays() const { return false; }
@@ -65,9 +67,6 @@ protected:
     virtual void add_stage_stats(FrameResult& /*result*/) {}
 
     // The GL objects every stage uses (created with the first frame, once a context is current).
-    // Rasterized primary visibility (02, 03 by default, 04, 05): this sample's G-buffer (timed as "raster"), whose
-    // pixels the pipeline then shades as primary hits before tracing everything after them.
-    void rasterize_and_shade_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset);
     GpuScene& gpu_scene();
     // Replaces the traversal given to the constructor; only before the first frame (stage 02's refers to a member).
     void set_traversal(Traversal traversal);

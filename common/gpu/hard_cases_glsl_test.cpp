@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "../trace/hard_cases.h"
 #include "../trace/intersect.h"
 #include "../trace/offset.h"

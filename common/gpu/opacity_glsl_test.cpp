@@ -107,7 +107,7 @@ Frame render(const Scene& scene, const Effects& effects) {
     settings.record_hits = true;
     GpuScene gpu_scene;
     gpu_scene.upload(scene);
-    Wavefront wavefront({"common/shaders/brute_force.glsl", {}, {}});
+    Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
     wavefront.trace_camera_sample(glm::vec2(0.5f));
     FrameResult result;

@@ -84,7 +84,7 @@ public:
     // A compute program from a file (relative to shader_root(), e.g. "03_uniform_grid/shaders/trace.comp").
     static Program compute(const std::filesystem::path& file, const ShaderDefines& defines = {});
     static Program compute_source(const std::string& name, const std::string& text, const ShaderDefines& defines = {});
-    // Any set of stages: {{GL_VERTEX_SHADER, "common/shaders/raster/gbuffer.vert"}, {GL_FRAGMENT_SHADER, ...}}.
+    // Any set of stages: {{GL_VERTEX_SHADER, "02_raster_hybrid/shaders/gbuffer.vert"}, {GL_FRAGMENT_SHADER, ...}}.
     static Program from_files(const std::vector<std::pair<GLenum, std::filesystem::path>>& stages,
                               const ShaderDefines& defines = {});
 

@@ -15,7 +15,7 @@
 #include "../trace/absorption.h"
 #include "../trace/normal_map.h"
 #include "../trace/texture_transform.h"
-#include "brute_force_traversal.h"
+#include "02_raster_hybrid/brute_force_traversal.h"
 #include "glsl_test_harness.h"
 #include "gpu_scene.h"
 #include "gpu_test_context.h"
@@ -135,7 +135,7 @@ Variant variant(const std::string& builtin) {
     settings.width = 16;
     settings.height = 12;
     settings.effects = analyze_effects(scene);
-    Wavefront wavefront(Traversal{"common/shaders/brute_force.glsl", {}, {}, {}, {}});
+    Wavefront wavefront(Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
     wavefront.begin_frame(gpu, settings);
     return {wavefront.defines(), gpu.normals().size()};
 }

@@ -9,9 +9,9 @@
 #include "../app/pixel_samples.h"
 #include "../scene/builtin_scenes.h"
 #include "../scene/effects.h"
-#include "../trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "../trace/whitted.h"
-#include "gbuffer.h"
+#include "02_raster_hybrid/gbuffer.h"
 #include "gpu_scene.h"
 #include "gpu_test_context.h"
 #include "wavefront.h"
@@ -67,7 +67,7 @@ std::vector<glm::vec3> render_gpu(const Scene& scene) {
     settings.height = kHeight;
     settings.effects = analyze_effects(scene);
     gpu::GBuffer gbuffer;
-    gpu::Wavefront wavefront(gpu::Traversal{"common/shaders/brute_force.glsl", {}, {}, {}, {}});
+    gpu::Wavefront wavefront(gpu::Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
     const glm::vec2 offset = pixel_sample_offsets(1)[0];
     gbuffer.render(gpu_scene, scene.camera, scene.bounds, kWidth, kHeight, offset);

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "common/trace/hard_cases.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/gpu_test_context.h"
@@ -31,7 +31,7 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
 
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
-    gpu::Wavefront wavefront({"common/shaders/brute_force.glsl", {}, {}});
+    gpu::Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
     wavefront.begin_frame(gpu_scene, settings);
     wavefront.trace_camera_sample(glm::vec2(0.5f));
     RayCounters gpu_counters;
@@ -82,7 +82,7 @@ TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
 
         gpu::GpuScene gpu_scene;
         gpu_scene.upload(scene);
-        gpu::Wavefront wavefront({"common/shaders/brute_force.glsl", {}, {}});
+        gpu::Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
         wavefront.begin_frame(gpu_scene, settings);
         wavefront.trace_camera_sample(glm::vec2(0.5f));
         FrameResult gpu;

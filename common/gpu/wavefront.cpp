@@ -58,7 +58,15 @@ HitRecord make_record(const WavefrontRay& ray, int sample, RayKind kind, std::in
 Wavefront::Wavefront(Traversal traversal)
     : traversal_(std::move(traversal)),
       compact_(Program::compute("common/shaders/wavefront/compact_records.comp")),
-      counters_(16) {}
+      counters_(16) {
+    // One kind of traversal: GLSL for the passes it does not replace, or batches replacing both; never GLSL that no
+    // pass would compile.
+    const bool batches = traversal_.trace_batch && traversal_.shadow_batch;
+    if (batches && !traversal_.glsl.empty())
+        throw std::logic_error("Traversal: " + traversal_.glsl + " is never compiled when both batch hooks are set");
+    if (!batches && traversal_.glsl.empty())
+        throw std::logic_error("Traversal: a GLSL traversal is needed for the passes without a batch hook");
+}
 
 std::size_t Wavefront::storage_block_limit() const {
     GLint64 gl_limit = 0;
@@ -186,13 +194,12 @@ void Wavefront::compile_programs() {
     trace_ = secondary_ && !traversal_.trace_batch ? compile("trace.comp", true) : Program();
     trace_collect_ = secondary_ ? compile("trace_collect.comp", false) : Program();
     camera_ = Program();   // compiled on first use (stages that trace primary rays)
-    deferred_rays_ = Program();   // compiled on first use (stage 02 with cut-outs)
 }
 
 std::vector<std::string> Wavefront::programs() const {
     std::vector<std::string> names;
     for (const Program* p :
-         {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_, &deferred_rays_})
+         {&shade_, &shadow_, &trace_, &shadow_collect_, &trace_collect_, &resolve_, &camera_})
         if (*p) names.push_back(p->name());
     return names;
 }
@@ -304,10 +311,11 @@ void Wavefront::for_each_tile_batch(F&& run_batch) {
     ++samples_;
 }
 
-void Wavefront::shade_sample(const Program& primary_pass) {
-    // Cut-outs: the primary pass defers the camera rays of pixels whose G-buffer candidate may be transparent (a
-    // MASK or BLEND material) to its ray slots; they are traced with the traversal after the rasterized hits.
-    const bool defer = defines_.count("ENABLE_CUTOUTS") > 0;
+void Wavefront::shade_sample(const Program& primary_pass, const Program* deferred_rays) {
+    // Cut-outs (stage 02): the primary pass defers the camera rays of pixels whose G-buffer candidate may be
+    // transparent (a MASK or BLEND material) to its ray slots; they are traced with the traversal after the
+    // rasterized hits.
+    const bool defer = deferred_rays != nullptr;
     if (defer) prepare_camera_tracing();
     for_each_tile_batch([&](std::size_t first_tile, std::size_t slots, unsigned pixel_first) {
         hit_slots_.reserve(slots * sizeof(WavefrontHit));
@@ -332,7 +340,7 @@ void Wavefront::shade_sample(const Program& primary_pass) {
         const std::size_t hits = compact(hit_slots_, slots, sizeof(WavefrontHit) / 4, hits_);
         // The deferred rays go to queue(0) (stage 02 has no other use for it) before shading overwrites the ray
         // slots and flags; they are traced once the rasterized hits and all their descendants are done.
-        const std::size_t deferred = defer ? gather_deferred_rays(slots) : 0;
+        const std::size_t deferred = defer ? gather_deferred_rays(*deferred_rays, slots) : 0;
         if (hits > 0) process_hits(hits, 0);
         if (deferred > 0) run_rays(queue(0), deferred, 0);
     });
@@ -352,12 +360,11 @@ void Wavefront::prepare_camera_tracing() {
 }
 
 // Flags the primary pass' ray slots that hold a deferred camera ray and packs them into queue(0); returns how many.
-std::size_t Wavefront::gather_deferred_rays(std::size_t slots) {
-    if (!deferred_rays_) deferred_rays_ = Program::compute("common/shaders/raster/deferred_rays.comp", defines_);
+std::size_t Wavefront::gather_deferred_rays(const Program& deferred_rays, std::size_t slots) {
     ray_slots_.bind(kBindingWavefrontRaySlots);
     flags_.bind(kBindingWavefrontFlags);
-    deferred_rays_.set("wf_input_count", unsigned(slots));
-    deferred_rays_.dispatch_threads(slots);
+    deferred_rays.set("wf_input_count", unsigned(slots));
+    deferred_rays.dispatch_threads(slots);
     record_pass("deferred_rays");
     pass_barrier();
     check_gl("wavefront: deferred rays");

@@ -97,11 +97,13 @@ struct BatchTraceInputs {
 };
 
 // The stage's traversal (see above).
+// Either a GLSL traversal (glsl, compiled into the trace and shadow passes) or a batch traversal (trace_batch and
+// shadow_batch, with glsl empty); the Wavefront refuses a mix where the GLSL would never be compiled.
 struct Traversal {
-    std::string glsl;                 // relative to the shader root, e.g. "common/shaders/brute_force.glsl"
+    std::string glsl;                 // relative to the shader root, e.g. "02_raster_hybrid/shaders/brute_force.glsl"
     ShaderDefines defines;            // extra defines it needs
     std::function<void()> bind;       // binds its buffers before the trace and shadow passes (may be empty)
-    // Optional: whole-queue traversals replacing the per-ray trace and shadow passes (may be empty).
+    // Whole-queue traversals replacing the per-ray trace and shadow passes (may be empty).
     std::function<void(const BatchTraceInputs&)> trace_batch, shadow_batch;
     // --pixel: what the traversal's wf_count_steps counts per ray ("" when it counts none; RayWork::steps).
     std::string steps;
@@ -118,11 +120,12 @@ public:
     // One sample with primary hits from the stage: for each batch of 8x8 pixel tiles, `primary_pass` (a program of
     // the stage, compiled with defines(); the stage binds its own inputs first) runs one thread per slot of the
     // batch: it writes wf_hits[slot] and wf_flags[slot] for pixel wf_tile_pixel(wf_tile_first * 64 + slot) and adds
-    // the background of empty pixels with wf_accumulate() (raster/primary_hits.comp). Then the hits are shaded and
-    // every bounce traced. With cut-outs (ENABLE_CUTOUTS) the pass may instead defer a pixel's camera ray to
-    // wf_ray_slots[slot] (pixel WF_NO_PIXEL in every slot it does not defer): those are traced as in
-    // trace_camera_sample after the batch's hits.
-    void shade_sample(const Program& primary_pass);
+    // the background of empty pixels with wf_accumulate() (stage 02's shaders/primary_hits.comp). Then the hits are
+    // shaded and every bounce traced. With `deferred_rays` (the stage's, compiled with defines(): stage 02's
+    // shaders/deferred_rays.comp, for cut-outs) the pass may instead defer a pixel's camera ray to
+    // wf_ray_slots[slot] (pixel WF_NO_PIXEL in every slot it does not defer); `deferred_rays` flags those slots, and
+    // their rays are traced as in trace_camera_sample after the batch's hits.
+    void shade_sample(const Program& primary_pass, const Program* deferred_rays = nullptr);
 
     // One sample with traced primary rays (stage 03 with --primary trace): camera rays through `offset` in each
     // pixel, traced with the traversal, then shaded as above.
@@ -194,7 +197,7 @@ private:
     void resolve(std::size_t band);
     void bind_traversal() const;
     void prepare_camera_tracing();
-    std::size_t gather_deferred_rays(std::size_t slots);   // stage 02 with cut-outs (shade_sample)
+    std::size_t gather_deferred_rays(const Program& deferred_rays, std::size_t slots);   // (shade_sample)
     // --pixel (settings.watch_pixel; the driver asks for the per-pixel counts with it): the watch list of
     // wavefront.glsl after the per-pixel counts, WF_WATCH_CAPACITY entries of WF_WATCH_ENTRY words.
     bool recorded(std::uint32_t pixel) const {   // --dump-hits: every pixel; --pixel alone: that one
@@ -216,7 +219,6 @@ private:
     ShaderDefines defines_;
     std::string compiled_key_;
     Program shade_, shadow_, trace_, shadow_collect_, trace_collect_, resolve_, camera_, compact_;
-    Program deferred_rays_;   // raster/deferred_rays.comp (cut-outs in shade_sample)
     Scan scan_;
     // Shared by all depths: the hits being shaded, the output slots of a pass with their flags and scan, results.
     Buffer hits_, hit_slots_, ray_slots_, flags_, offsets_, counts_, results_;

@@ -14,21 +14,21 @@
 #include <set>
 #include <tuple>
 
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "../app/pixel_samples.h"
 #include "../scene/builtin_scenes.h"
 #include "../scene/effects.h"
 #include "../trace/whitted.h"
-#include "gbuffer.h"
+#include "02_raster_hybrid/gbuffer.h"
 #include "gpu_scene.h"
 #include "gpu_test_context.h"
-#include "brute_force_traversal.h"
+#include "02_raster_hybrid/brute_force_traversal.h"
 #include "wavefront.h"
 
 namespace rt {
 namespace {
 
-const gpu::Traversal kBruteForce{"common/shaders/brute_force.glsl", {}, {}, {}, {}};
+const gpu::Traversal kBruteForce{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}};
 
 Scene builtin(const std::string& name, int width, int height) {
     FlattenOptions options;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "../scene/effects.h"
-#include "brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "whitted.h"
 
 namespace rt {

@@ -25,7 +25,7 @@
 #include <thread>
 #include <vector>
 
-#include "common/trace/brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "common/app/image.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 
-#include "brute_force_tracer.h"
+#include "01_naive/brute_force_tracer.h"
 #include "whitted.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"

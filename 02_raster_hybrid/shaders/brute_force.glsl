@@ -1,7 +1,7 @@
 // The reference traversal (stage 02's, and the one every faster traversal is checked against): no acceleration
 // structure, as in stage 01 (brute_force_tracer.h). Every ray is tested against every triangle. The wavefront
 // pipeline (common/gpu/wavefront.h) calls these from its trace pass (closest hit) and its shadow pass (any hit);
-// stages 03-05 plug in a faster traversal instead. Shader path: "common/shaders/brute_force.glsl".
+// stages 03-05 plug in a faster traversal instead. Shader path: "02_raster_hybrid/shaders/brute_force.glsl".
 #include "common/shaders/wavefront/wavefront.glsl"
 #include "scene.glsl"
 #include "opacity.glsl"

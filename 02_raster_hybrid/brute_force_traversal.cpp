@@ -12,7 +12,7 @@ BruteForceTraversal::BruteForceTraversal(std::function<std::size_t()> triangle_c
 }
 
 Traversal BruteForceTraversal::traversal() {
-    Traversal t{"common/shaders/brute_force.glsl", {}, {}};
+    Traversal t;   // a batch traversal: brute_force_slice.comp includes the GLSL itself
     t.trace_batch = [this](const BatchTraceInputs& in) { run(false, in); };
     t.shadow_batch = [this](const BatchTraceInputs& in) { run(true, in); };
     return t;
@@ -25,8 +25,8 @@ void BruteForceTraversal::run(bool any_hit, const BatchTraceInputs& in) {
         ShaderDefines any_defines = in.wavefront.defines();
         any_defines.emplace("ANY_HIT", "1");
         any_defines.emplace("RT_SHADOW_RAYS", "1");   // the shadow rule of the opacity test (opacity.glsl)
-        closest_ = Program::compute("common/shaders/brute_force_slice.comp", in.wavefront.defines());
-        any_ = Program::compute("common/shaders/brute_force_slice.comp", any_defines);
+        closest_ = Program::compute("02_raster_hybrid/shaders/brute_force_slice.comp", in.wavefront.defines());
+        any_ = Program::compute("02_raster_hybrid/shaders/brute_force_slice.comp", any_defines);
         compiled_for_ = key;
     }
     const Program& program = any_hit ? any_ : closest_;

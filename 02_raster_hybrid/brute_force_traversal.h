@@ -1,5 +1,5 @@
-// Stage 02's traversal: brute force, every ray against every triangle (common/shaders/brute_force.glsl), traced as a
-// batch traversal in slices of triangles (common/shaders/brute_force_slice.comp): one dispatch per slice over the
+// Stage 02's traversal: brute force, every ray against every triangle (02_raster_hybrid/shaders/brute_force.glsl), traced as a
+// batch traversal in slices of triangles (02_raster_hybrid/shaders/brute_force_slice.comp): one dispatch per slice over the
 // pass' whole queue, each ray's closest hit (or blocked flag) carried from slice to slice. The result, the ties and
 // the test counts are exactly those of one loop over all triangles per ray; no invocation loops over more than one
 // slice, which keeps a large scene within what a GPU invocation may loop (llvmpipe: 65,535 iterations in all).
@@ -9,8 +9,8 @@
 #include <functional>
 #include <string>
 
-#include "shader.h"
-#include "wavefront.h"
+#include "common/gpu/shader.h"
+#include "common/gpu/wavefront.h"
 
 namespace rt::gpu {
 

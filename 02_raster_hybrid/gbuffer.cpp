@@ -6,8 +6,8 @@
 namespace rt::gpu {
 
 GBuffer::GBuffer()
-    : program_(Program::from_files({{GL_VERTEX_SHADER, "common/shaders/raster/gbuffer.vert"},
-                                         {GL_FRAGMENT_SHADER, "common/shaders/raster/gbuffer.frag"}})) {
+    : program_(Program::from_files({{GL_VERTEX_SHADER, "02_raster_hybrid/shaders/gbuffer.vert"},
+                                         {GL_FRAGMENT_SHADER, "02_raster_hybrid/shaders/gbuffer.frag"}})) {
     // The vertices come straight from the scene's position buffer (vec4 per vertex, 3 per triangle).
     glCreateVertexArrays(1, &vao_);
     glEnableVertexArrayAttrib(vao_, 0);
@@ -107,13 +107,24 @@ void GBuffer::shade_sample(Wavefront& wavefront, glm::vec2 offset) {
     std::string key;
     for (const auto& [k, v] : wavefront.defines()) key.append(k).append("=").append(v).append(";");
     if (key != primary_hits_key_) {
-        primary_hits_ = Program::compute("common/shaders/raster/primary_hits.comp", wavefront.defines());
+        primary_hits_ = Program::compute("02_raster_hybrid/shaders/primary_hits.comp", wavefront.defines());
+        // Cut-outs: pixels whose candidate may be transparent defer their camera ray (shaders/deferred_rays.comp).
+        deferred_rays_ = wavefront.defines().count("ENABLE_CUTOUTS")
+                             ? Program::compute("02_raster_hybrid/shaders/deferred_rays.comp", wavefront.defines())
+                             : Program();
         primary_hits_key_ = key;
     }
     primary_hits_.set("wf_sample_offset", offset);
     glBindTextureUnit(kWavefrontFirstFreeTextureUnit, ids_);
-    wavefront.shade_sample(primary_hits_);
+    wavefront.shade_sample(primary_hits_, deferred_rays_ ? &deferred_rays_ : nullptr);
     check_gl("G-buffer: shade sample");
+}
+
+std::vector<std::string> GBuffer::programs() const {
+    std::vector<std::string> names;
+    for (const Program* p : {&primary_hits_, &deferred_rays_})
+        if (*p) names.push_back(p->name());
+    return names;
 }
 
 }  // namespace rt::gpu
