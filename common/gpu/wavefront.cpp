@@ -1,59 +1,18 @@
+// The wavefront pipeline's scheduler (wavefront.h): a frame's variant and programs, then each sample's passes,
+// bounce by bounce. Storage batching is in wavefront_storage.cpp, the recorded diagnostics (--dump-hits, --pixel)
+// in wavefront_records.cpp.
 #include "wavefront.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <optional>
 #include <stdexcept>
 #include <utility>
 
-#include "../app/input_error.h"
 #include "bindings.h"
+#include "wavefront_detail.h"
 
 namespace rt::gpu {
 
-namespace {
-
-constexpr std::size_t kTilePixels = 64;                  // 8x8 tiles (wavefront.glsl: wf_tile_pixel)
-constexpr std::size_t kRadianceBytesPerPixel = 9 * 4;    // 3 channels x 3 limbs (wf_accumulate)
-constexpr std::uint32_t kNoPixel = 0xffffffffu;
-
-// Between passes: shader writes become visible to the next pass, to read-backs and to buffer clears.
-void pass_barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
-
-// Times a pass on the stage's GpuTimer, when it gave one, until end() or the end of the scope.
-struct PassTimer {
-    std::optional<GpuTimer::Scope> scope;
-    PassTimer(GpuTimer* timer, const char* phase) {
-        if (timer) scope.emplace(*timer, phase);
-    }
-    void end() { scope.reset(); }
-};
-
-std::size_t env_storage_limit() {
-    const char* text = std::getenv("RT_MAX_SSBO_BYTES");
-    if (!text || !*text) return 0;
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(text, &end, 10);
-    if (*end != '\0' || v == 0) throw InputError("RT_MAX_SSBO_BYTES: expected a positive number of bytes");
-    return std::size_t(v);
-}
-
-HitRecord make_record(const WavefrontRay& ray, int sample, RayKind kind, std::int32_t triangle, float t) {
-    HitRecord r;
-    r.sample = std::uint32_t(sample);
-    r.pixel = ray.pixel;
-    r.path = ray.path;
-    r.kind_light = std::uint32_t(kind) | (kind == RayKind::Shadow ? ray.light << 8 : 0u);
-    r.triangle = triangle;
-    r.t = t;
-    for (int k = 0; k < 3; ++k) {
-        r.origin[k] = ray.origin[k];
-        r.direction[k] = ray.direction[k];
-    }
-    return r;
-}
-
-}  // namespace
+using namespace wavefront_detail;
 
 Wavefront::Wavefront(Traversal traversal)
     : traversal_(std::move(traversal)),
@@ -66,38 +25,6 @@ Wavefront::Wavefront(Traversal traversal)
         throw std::logic_error("Traversal: " + traversal_.glsl + " is never compiled when both batch hooks are set");
     if (!batches && traversal_.glsl.empty())
         throw std::logic_error("Traversal: a GLSL traversal is needed for the passes without a batch hook");
-}
-
-std::size_t Wavefront::storage_block_limit() const {
-    GLint64 gl_limit = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &gl_limit);
-    std::size_t limit = gl_limit > 0 ? std::size_t(gl_limit) : std::size_t(128) << 20;
-    if (max_storage_bytes > 0) limit = std::min(limit, max_storage_bytes);
-    if (const std::size_t env = env_storage_limit(); env > 0) limit = std::min(limit, env);
-    return limit;
-}
-
-// How many hits (or rays) one batch holds: every buffer a batch binds must fit the storage limit. Per hit of a
-// batch: the hit (80 bytes), its hit slot, and its output slots (64 bytes per ray: reflection, refraction and at
-// least one light's shadow ray; more lights are shaded in several runs, see process_hits).
-void Wavefront::size_batches() {
-    storage_limit_ = storage_block_limit();
-    // Per-pixel sums in bands of rows of tiles (the whole image when it fits); the test counts for the whole image.
-    const std::size_t tile_row_bytes = kRadianceBytesPerPixel * std::size_t(settings_.width) * 8;
-    const std::size_t tests_bytes = settings_.record_tests_per_pixel ? tests_words() * sizeof(std::uint32_t) : 0;
-    if (tile_row_bytes > storage_limit_ || tests_bytes > storage_limit_)
-        throw InputError("wavefront: a " + std::to_string(settings_.width) + "x" +
-                         std::to_string(settings_.height) + " image needs " +
-                         std::to_string(std::max(tile_row_bytes, tests_bytes)) +
-                         " bytes of per-pixel storage in one block, more than the storage block limit of " +
-                         std::to_string(storage_limit_) + " bytes (the device's, or RT_MAX_SSBO_BYTES)");
-    band_tile_rows_ = storage_limit_ / tile_row_bytes;
-    const std::size_t rays_per_hit = std::size_t(secondary_ ? 2 : 0) + (shadows_ ? 1 : 0);
-    const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
-    batch_ = storage_limit_ / per_hit;
-    if (batch_ < kTilePixels)
-        throw InputError("wavefront: the storage block limit (" + std::to_string(storage_limit_) +
-                         " bytes) cannot hold one 8x8 tile of rays");
 }
 
 void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& settings) {
@@ -218,33 +145,6 @@ void Wavefront::set_uniforms(const Program& p) const {
     }
 }
 
-// --pixel: the per-pixel counts, then the watch list (wavefront.glsl, wf_watch): its count and its entries.
-std::size_t Wavefront::tests_words() const {
-    return pixels_ + (watching() ? 1 + kWatchCapacity * kWatchEntryWords : 0);
-}
-
-// After each sample: the watched pixel's entries become RayWork of that sample, and the list starts empty again.
-void Wavefront::drain_watch() {
-    std::uint32_t used = 0;
-    tests_per_pixel_.download(&used, sizeof used, pixels_ * sizeof(std::uint32_t));
-    if (used > kWatchCapacity)
-        throw std::runtime_error("--pixel: the pixel's rays make more than " + std::to_string(kWatchCapacity) +
-                                 " parts of a ray tree in one sample; watch a simpler pixel or use fewer lights");
-    if (used == 0) return;
-    std::vector<std::uint32_t> words(std::size_t(used) * kWatchEntryWords);
-    tests_per_pixel_.download(words.data(), words.size() * sizeof(std::uint32_t),
-                              (pixels_ + 1) * sizeof(std::uint32_t));
-    for (std::uint32_t e = 0; e < used; ++e) {
-        const std::uint32_t* w = &words[std::size_t(e) * kWatchEntryWords];
-        const std::uint64_t tests = std::uint64_t(w[2]) | std::uint64_t(w[3]) << 32;
-        ray_work_.push_back(RayWork{std::uint32_t(samples_), w[0], w[1], tests, w[4]});
-    }
-    std::fill(words.begin(), words.end(), 0u);
-    const std::uint32_t zero = 0;
-    tests_per_pixel_.upload(&zero, sizeof zero, pixels_ * sizeof(std::uint32_t));
-    tests_per_pixel_.upload(words.data(), words.size() * sizeof(std::uint32_t), (pixels_ + 1) * sizeof(std::uint32_t));
-}
-
 void Wavefront::record_pass(const std::string& name) {
     if (dispatches_[name]++ == 0) pass_order_.push_back(name);
 }
@@ -255,37 +155,6 @@ void Wavefront::bind_traversal() const {
 
 // The rays of depth `depth` (then the shadow rays spawned at depth - 1); depth <= max_depth + 1.
 Buffer& Wavefront::queue(int depth) { return queues_.at(std::size_t(depth)); }
-
-// Packs the flagged slots of `slots` (n records of stride_uints) into `out`, keeping their order: an exclusive scan
-// of the flags gives each used slot its place. Returns how many were used; with `split`, also how many of the
-// first `split` slots were (the scan's value at split).
-std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out,
-                                 std::size_t split, std::uint32_t* before_split) {
-    offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
-    scan_.exclusive_flags(flags_, offsets_, n, &counts_, 0);
-    const std::uint32_t total = counts_.download_value<std::uint32_t>(0);
-    if (before_split) *before_split = split < n ? offsets_.download_value<std::uint32_t>(split) : total;
-    if (total == 0) return 0;
-    out.reserve(std::size_t(total) * stride_uints * sizeof(std::uint32_t));
-    flags_.bind(kBindingCompactFlags);
-    offsets_.bind(kBindingCompactOffsets);
-    slots.bind(kBindingCompactValues);
-    out.bind(kBindingCompactOut);
-    compact_.set("n", unsigned(n));
-    compact_.set("stride", stride_uints);
-    compact_.dispatch_threads(n * stride_uints);
-    pass_barrier();
-    check_gl("wavefront: compaction");
-    return total;
-}
-
-// The pixels of band b: the first one and how many (whole rows; the last band may be shorter).
-std::pair<std::size_t, std::size_t> Wavefront::band_pixels(std::size_t band) const {
-    const std::size_t width = std::size_t(settings_.width), height = std::size_t(settings_.height);
-    const std::size_t first_row = std::min(band * band_tile_rows_ * 8, height);
-    const std::size_t end_row = std::min(first_row + band_tile_rows_ * 8, height);
-    return {first_row * width, (end_row - first_row) * width};
-}
 
 // One sample, band by band: primary batches are runs of whole 8x8 tiles of the band, as many as one batch holds.
 // A ray adds radiance only to its own pixel, so the band's sums are complete when its batches are done: resolve.
@@ -517,35 +386,6 @@ void Wavefront::run_collect(const Program& collect, Buffer& rays, std::size_t fi
     check_gl("wavefront: collect pass");
 }
 
-// --dump-hits: every slot of a primary batch inside the image is a primary ray (triangle -1 where the G-buffer is
-// empty).
-void Wavefront::record_primary_slots(std::size_t slots) {
-    for (const WavefrontHit& h : hit_slots_.download<WavefrontHit>(slots))
-        if (h.ray.pixel != kNoPixel && recorded(h.ray.pixel))
-            hit_records_.push_back(make_record(h.ray, samples_, RayKind::Primary, h.triangle,
-                                               h.triangle >= 0 ? h.t : 0.0f));
-}
-
-// --dump-hits: the rays of a trace or shadow pass with their results.
-void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow) {
-    const std::vector<WavefrontRay> queue = rays.download<WavefrontRay>(count, first);
-    if (shadow) {
-        const std::vector<std::uint32_t> occluded = results_.download<std::uint32_t>(count);
-        for (std::size_t i = 0; i < count; ++i)
-            if (recorded(queue[i].pixel))
-                hit_records_.push_back(
-                    make_record(queue[i], samples_, RayKind::Shadow, occluded[i] ? 1 : -1, 0.0f));
-        return;
-    }
-    const std::vector<WavefrontTraceResult> results = results_.download<WavefrontTraceResult>(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        if (!recorded(queue[i].pixel)) continue;
-        const auto kind = RayKind(queue[i].depth_kind >> 16);
-        hit_records_.push_back(make_record(queue[i], samples_, kind, results[i].triangle,
-                                           results[i].triangle >= 0 ? results[i].t : 0.0f));
-    }
-}
-
 void Wavefront::resolve(std::size_t band) {
     const PassTimer timed(timer, "resolve");
     radiance_.bind(kBindingWavefrontRadiance);
@@ -556,12 +396,6 @@ void Wavefront::resolve(std::size_t band) {
     record_pass("resolve");
     pass_barrier();
     check_gl("wavefront: resolve pass");
-}
-
-std::vector<Wavefront::ImageBand> Wavefront::image_bands() const {
-    std::vector<ImageBand> bands;
-    for (std::size_t b = 0; b < image_bands_.size(); ++b) bands.push_back({image_bands_[b], band_pixels(b).first, band_pixels(b).second});
-    return bands;
 }
 
 Image Wavefront::finish_frame(RayCounters& counters) {
@@ -585,16 +419,6 @@ Image Wavefront::finish_frame(RayCounters& counters) {
     counters.rays[int(RayKind::Primary)] = std::uint64_t(pixels_) * std::uint64_t(samples_);
     check_gl("wavefront: finish frame");
     return image;
-}
-
-void Wavefront::finish_frame(FrameResult& result) {
-    result.image = finish_frame(result.stats.counters);
-    if (settings_.record_hits) result.hits = std::move(hit_records_);
-    hit_records_.clear();
-    if (settings_.record_tests_per_pixel) result.tests_per_pixel = tests_per_pixel_.download<std::uint32_t>(pixels_);
-    result.ray_work = std::move(ray_work_);
-    ray_work_.clear();
-    result.ray_work_steps = traversal_.steps;
 }
 
 }  // namespace rt::gpu
