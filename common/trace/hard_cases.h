@@ -1,6 +1,7 @@
-// Test support for the hard-case suites: the meshes and rays that the CPU suite
-// (common/trace/hard_cases_test.cpp) and its GLSL twin (common/gpu/hard_cases_glsl_test.cpp) share, so both run the
-// same cases:
+// Test support for the hard-case suites: the meshes and rays that the CPU suites (beside the header each covers:
+// common/trace/intersect_watertight_test.cpp, offset_test.cpp, shading_hard_cases_test.cpp,
+// whitted_hard_cases_test.cpp) and their GLSL twin (common/gpu/hard_cases_glsl_test.cpp) share, so both run the same
+// cases:
 //   closed meshes       closed_sphere(), closed_cube() and their topology (shared vertices and edges by position)
 //   watertight rays     rays_at_shared_vertices_and_edges(): aimed exactly at the shared vertices and edges
 //   placement           sphere_at() / thin_slab_at(): a scene at coordinates OFFSET and of size SCALE, and where
@@ -30,7 +31,36 @@
 namespace rt::hard_cases {
 
 // ---------------------------------------------------------------------------------------------------------------
+// Names and values the suites print and loop over.
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr IntersectMethod kMethods[] = {IntersectMethod::Moller, IntersectMethod::Watertight};
+constexpr OffsetMethod kOffsets[] = {OffsetMethod::Epsilon, OffsetMethod::Robust};
+
+inline const char* name_of(IntersectMethod m) { return m == IntersectMethod::Moller ? "moller" : "watertight"; }
+inline const char* name_of(OffsetMethod m) { return m == OffsetMethod::Epsilon ? "epsilon" : "robust"; }
+template <class T> const char* precision_name() { return sizeof(T) == sizeof(float) ? "float" : "double"; }
+
+// ---------------------------------------------------------------------------------------------------------------
 // Scenes and sampling.
+
+// One triangle in the z = 0 plane facing +z, lit from +z, with the given vertex normals.
+inline Scene lit_triangle(const glm::vec3& vertex_normal) {
+    Scene s;
+    s.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    s.normals = {vertex_normal, vertex_normal, vertex_normal};
+    s.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    s.material_ids = {0};
+    Material white;
+    white.metallic = 0.0f;
+    s.materials = {white};
+    Light light;
+    light.position = {0, 0, 2};
+    light.intensity = 8.0f;
+    s.lights = {light};
+    return s;
+}
 
 // An asset holding `primitives`, each under its own root node placed by `translation` and `rotation`, with one
 // white diffuse material (the primitives' material index 0).

@@ -1,5 +1,5 @@
 // Ray/triangle intersection basics for both methods and both precisions. The hard cases (shared edges and vertices,
-// far coordinates, NaN input) are in hard_cases_test.cpp.
+// NaN input) are in intersect_watertight_test.cpp and whitted_hard_cases_test.cpp.
 #include <gtest/gtest.h>
 
 #include "intersect.h"
