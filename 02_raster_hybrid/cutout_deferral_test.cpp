@@ -8,6 +8,7 @@
 #include "common/scene/effects.h"
 #include "01_naive/brute_force_tracer.h"
 #include "hybrid_renderer.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
@@ -15,14 +16,8 @@ namespace {
 TEST(CutoutDeferral, PixelsSeeingThroughAHoleGetStage01sHitBehindIt) {
     gpu::test_context();
     const int width = 80, height = 60;
-    FlattenOptions options;
-    options.aspect = float(width) / float(height);
-    const Scene scene = flatten(make_builtin_scene("cutouts"), options);
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.effects = analyze_effects(scene);
-    settings.record_hits = true;
+    const Scene scene = builtin_scene_for("cutouts", width, height);
+    const RenderSettings settings = test_frame_settings(scene, width, height);
     HybridRenderer stage;
     const FrameResult frame = stage.render(scene, settings);
     const auto& passes = frame.extra["passes"];

@@ -12,6 +12,7 @@
 #include "common/scene/effects.h"
 #include "hybrid_renderer.h"
 #include "tests/hit_compare.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
@@ -20,15 +21,6 @@ Scene spheres_300() {
     FlattenOptions options;
     options.aspect = 4.0f / 3.0f;
     return flatten(make_builtin_scene("spheres:300"), options);
-}
-
-RenderSettings small_settings(const Scene& scene, int width, int height) {
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.effects = analyze_effects(scene);
-    settings.record_hits = true;
-    return settings;
 }
 
 // Stage 02's traversal tracing the camera rays too (closest hits through the slices), as 03's --primary trace does.
@@ -65,7 +57,7 @@ TEST(BruteForceSlices, TracedRaysOfASceneBeyondOneInvocationsLoopLimitHitWhatSta
     gpu::test_context();
     const Scene scene = spheres_300();
     ASSERT_GT(scene.triangle_count(), 4u * 16384u);   // more than 65,535 and four slices
-    const RenderSettings settings = small_settings(scene, 32, 24);
+    const RenderSettings settings = test_frame_settings(scene, 32, 24);
     TracedBruteForce traced;
     expect_hits_like_stage01(traced.render(scene, settings), scene, settings, 0.0);
 }
@@ -75,7 +67,7 @@ TEST(BruteForceSlices, TracedRaysOfASceneBeyondOneInvocationsLoopLimitHitWhatSta
 TEST(BruteForceSlices, Stage02sShadowRaysOfASceneBeyondOneInvocationsLoopLimitAnswerAsStage01s) {
     gpu::test_context();
     const Scene scene = spheres_300();
-    const RenderSettings settings = small_settings(scene, 64, 48);
+    const RenderSettings settings = test_frame_settings(scene, 64, 48);
     HybridRenderer stage02;
     expect_hits_like_stage01(stage02.render(scene, settings), scene, settings, 0.005);
 }

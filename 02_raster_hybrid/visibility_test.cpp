@@ -16,24 +16,19 @@
 #include "common/scene/effects.h"
 #include "02_raster_hybrid/gbuffer.h"
 #include "hybrid_renderer.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
 
 constexpr double kMaxEdgeMismatch = 0.005;   // fraction of pixels whose G-buffer triangle differs from stage 01's
 
-Scene builtin(const std::string& name, int width, int height) {
-    FlattenOptions options;
-    options.aspect = float(width) / float(height);
-    return flatten(make_builtin_scene(name), options);
-}
-
 class GBufferVisibility : public testing::TestWithParam<const char*> {};
 
 TEST_P(GBufferVisibility, TriangleIdsEqualPrimaryHitsOfStage01) {
     gpu::test_context();
     const int width = 160, height = 120;
-    const Scene scene = builtin(GetParam(), width, height);
+    const Scene scene = builtin_scene_for(GetParam(), width, height);
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
     gpu::GBuffer gbuffer;
@@ -74,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, GBufferVisibility,
 // One 64x48 frame of a built-in scene through stage 02, with the effects the scene calls for.
 FrameResult render_64x48(const char* name) {
     gpu::test_context();
-    const Scene scene = builtin(name, 64, 48);
+    const Scene scene = builtin_scene_for(name, 64, 48);
     RenderSettings settings;
     settings.width = 64;
     settings.height = 48;

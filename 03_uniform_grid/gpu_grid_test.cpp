@@ -17,18 +17,12 @@
 #include "common/scene/effects.h"
 #include "dda_cases.h"
 #include "tests/hit_compare.h"
+#include "tests/stage_test_fixture.h"
 #include "gpu_grid.h"
 #include "grid_renderer.h"
 
 namespace rt {
 namespace {
-
-Scene scene_at(const std::string& name, float time = 0.0f, float aspect = 4.0f / 3.0f) {
-    FlattenOptions options;
-    options.time = time;
-    options.aspect = aspect;
-    return flatten(make_builtin_scene(name), options);
-}
 
 // ---------------------------------------------------------------------------------------------------------------
 // The GPU build equals the CPU build.
@@ -50,7 +44,7 @@ void expect_same_grid(const Scene& s, glm::ivec3 res, const std::string& what) {
 
 TEST(GpuGrid, EqualsTheCpuGridCellByCell) {
     for (const char* name : {"whitted", "cornell", "diffuse", "spheres:16", "far"}) {
-        const Scene s = scene_at(name);
+        const Scene s = builtin_scene(name);
         expect_same_grid(s, choose_resolution(s.bounds, s.triangle_count(), kDefaultGridLambda), name);
         expect_same_grid(s, {1, 1, 1}, std::string(name) + " one cell");
         expect_same_grid(s, {7, 3, 5}, std::string(name) + " 7x3x5");
@@ -60,19 +54,19 @@ TEST(GpuGrid, EqualsTheCpuGridCellByCell) {
 // The floor quad of spheres:450 spans about 57,000 of the 239x8x239 cells: far more than one shader invocation may
 // loop over on llvmpipe (65,535 iterations in all), so the build must split a triangle's cells across invocations.
 TEST(GpuGrid, EqualsTheCpuGridOnALargeFlatGridUnderAWideQuad) {
-    const Scene s = scene_at("spheres:450");
+    const Scene s = builtin_scene("spheres:450");
     expect_same_grid(s, choose_resolution(s.bounds, s.triangle_count(), kDefaultGridLambda), "spheres:450");
 }
 
 // One triangle over a whole 1024x1024x1 grid (a million cells, 2,048 build chunks).
 TEST(GpuGrid, EqualsTheCpuGridForOneTriangleOverAMillionCells) {
-    const Scene s = scene_at("spheres:1");
+    const Scene s = builtin_scene("spheres:1");
     expect_same_grid(s, {1024, 1, 1024}, "spheres:1 on 1024x1x1024");
 }
 
 TEST(GpuGrid, EqualsTheCpuGridOnFramesOfTheDynamicScene) {
     for (float time : {0.0f, 0.25f, 0.5f, 1.75f}) {
-        const Scene s = scene_at("dynamic", time);
+        const Scene s = builtin_scene("dynamic", time);
         expect_same_grid(s, choose_resolution(s.bounds, s.triangle_count(), kDefaultGridLambda),
                          "dynamic at t = " + std::to_string(time));
     }
@@ -172,20 +166,11 @@ FrameResult render_grid(const Scene& s, const RenderSettings& settings, GridOpti
     return renderer.render(s, settings);
 }
 
-RenderSettings small_settings(const Scene& s) {
-    RenderSettings settings;
-    settings.width = 64;
-    settings.height = 48;
-    settings.effects = analyze_effects(s);
-    settings.record_hits = true;
-    return settings;
-}
-
 TEST(GridRenderer, LambdaAndResolutionChangeOnlyTheCost) {
     gpu::test_context();
     for (const char* name : {"whitted", "spheres:16"}) {
-        const Scene s = scene_at(name);
-        const RenderSettings settings = small_settings(s);
+        const Scene s = builtin_scene(name);
+        const RenderSettings settings = test_frame_settings(s);
         const FrameResult reference = render_grid(s, settings, {});
         EXPECT_EQ(reference.extra["grid"]["loop_bound_reached"], 0);
         std::uint64_t tests_reference = reference.stats.counters.intersection_tests;
@@ -204,8 +189,8 @@ TEST(GridRenderer, LambdaAndResolutionChangeOnlyTheCost) {
 
 TEST(GridRenderer, ImageAndHitsEqualStage02s) {
     gpu::test_context();
-    const Scene s = scene_at("whitted");
-    const RenderSettings settings = small_settings(s);
+    const Scene s = builtin_scene("whitted");
+    const RenderSettings settings = test_frame_settings(s);
     HybridRenderer stage02;
     expect_same_frame(render_grid(s, settings, {}), stage02.render(s, settings), "03 vs 02");
 }
@@ -225,8 +210,8 @@ protected:
 TEST(GridRenderer, TracedPrimaryRaysGiveBruteForcesFrame) {
     gpu::test_context();
     for (const char* name : {"whitted", "far"}) {
-        const Scene s = scene_at(name);
-        const RenderSettings settings = small_settings(s);
+        const Scene s = builtin_scene(name);
+        const RenderSettings settings = test_frame_settings(s);
         TracedBruteForce brute;
         GridOptions options;
         options.trace_primary = true;
@@ -242,8 +227,8 @@ TEST(GridRenderer, TracedPrimaryRaysGiveBruteForcesFrame) {
 // invocation may loop over on llvmpipe, so the reference is the CPU's brute force, not brute_force.glsl.)
 TEST(GridRenderer, TracedRaysOfALargeFlatGridHitWhatStage01Hits) {
     gpu::test_context();
-    const Scene s = scene_at("spheres:450");
-    RenderSettings settings = small_settings(s);
+    const Scene s = builtin_scene("spheres:450");
+    RenderSettings settings = test_frame_settings(s);
     settings.width = 32;
     settings.height = 24;
     GridOptions options;
@@ -259,8 +244,8 @@ TEST(GridRenderer, TracedRaysOfALargeFlatGridHitWhatStage01Hits) {
 
 TEST(GridRenderer, AHeuristicGridTooLargeForTheStorageLimitLowersLambda) {
     gpu::test_context();
-    const Scene s = scene_at("spheres:100");
-    RenderSettings settings = small_settings(s);
+    const Scene s = builtin_scene("spheres:100");
+    RenderSettings settings = test_frame_settings(s);
     settings.record_hits = false;
     const FrameResult r = render_grid(s, settings, GridOptions{900.0f});
     const double lambda_used = r.extra["grid"]["lambda_used"];
@@ -270,8 +255,8 @@ TEST(GridRenderer, AHeuristicGridTooLargeForTheStorageLimitLowersLambda) {
 
 TEST(GridRenderer, NothingIsBuiltWhenNoRayIsTraced) {
     gpu::test_context();
-    const Scene s = scene_at("diffuse");
-    RenderSettings settings = small_settings(s);
+    const Scene s = builtin_scene("diffuse");
+    RenderSettings settings = test_frame_settings(s);
     settings.effects = Effects{};   // rasterized primaries, no shadow, reflection or refraction rays
     const FrameResult r = render_grid(s, settings, {});
     EXPECT_EQ(r.extra["grid"]["built"], false);

@@ -5,34 +5,18 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "common/app/driver.h"
 #include "grid_renderer.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
 
-struct StageRun {
-    int rc;
-    std::string err;
-};
-
 StageRun run_stage_03(std::vector<std::string> args) {
-    args.insert(args.begin(), "03_uniform_grid");
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
     GridRenderer renderer;
-    ::testing::internal::CaptureStderr();
-    const int rc = run_stage("03_uniform_grid", int(argv.size()), argv.data(), renderer);
-    return {rc, ::testing::internal::GetCapturedStderr()};
-}
-
-void expect_one_line_error(const StageRun& r, const std::string& needle) {
-    EXPECT_EQ(r.rc, 2) << r.err;
-    EXPECT_EQ(r.err.rfind("03_uniform_grid: error: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
-    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+    return run_stage_command("03_uniform_grid", renderer, std::move(args));
 }
 
 TEST(GridOptions, BadValuesAreOneLineErrorsWithExit2) {
@@ -45,7 +29,7 @@ TEST(GridOptions, BadValuesAreOneLineErrorsWithExit2) {
         std::filesystem::remove(out);
         std::vector<std::string> args = {"--scene", "builtin:whitted", "--width", "8", "--height", "6", "--out", out};
         args.insert(args.end(), bad.begin(), bad.end());
-        expect_one_line_error(run_stage_03(args), bad[0]);
+        expect_one_line_error(run_stage_03(args), "03_uniform_grid", bad[0]);
         EXPECT_FALSE(std::filesystem::exists(out)) << bad[0] << " " << bad[1];
     }
 }
@@ -63,7 +47,7 @@ TEST(GridOptions, AGridBeyondTheStorageLimitIsRefusedAndWritesNothing) {
     std::filesystem::remove(out);
     const StageRun r = run_stage_03({"--scene", "builtin:whitted", "--width", "8", "--height", "6", "--out", out,
                                 "--grid-res", "1024,1024,1024"});
-    expect_one_line_error(r, "storage block limit");
+    expect_one_line_error(r, "03_uniform_grid", "storage block limit");
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 

@@ -26,6 +26,7 @@
 #include "ray_hierarchy.h"
 #include "ray_hierarchy_renderer.h"
 #include "ray_sets.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
@@ -197,13 +198,6 @@ TEST(GlslRayHierarchy, EmptyChildrenAreLeftOutOfTheUnion) {
 // ---------------------------------------------------------------------------------------------------------------
 // The batch traversal on crafted rays against brute force on the CPU (bit-exact twins on llvmpipe).
 
-Scene scene_at(const std::string& name, float time = 0.0f) {
-    FlattenOptions options;
-    options.time = time;
-    options.aspect = 4.0f / 3.0f;
-    return flatten(make_builtin_scene(name), options);
-}
-
 // `scene` moved and scaled: p * scale + offset (huge and tiny coordinates for the float padding).
 Scene transformed(Scene scene, float scale, glm::vec3 offset) {
     Bounds b;
@@ -298,7 +292,7 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
 
 TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
     gpu::test_context();
-    const Scene cornell = scene_at("cornell");
+    const Scene cornell = builtin_scene("cornell");
     expect_brute_force_answers(cornell, "cornell");
     expect_brute_force_answers(transformed(cornell, 1e3f, glm::vec3(3e6f, -1e6f, 2e6f)), "cornell x1e3 at 3e6");
     expect_brute_force_answers(transformed(cornell, 1e-4f, glm::vec3(1e-3f)), "cornell x1e-4");
@@ -309,9 +303,9 @@ TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
 // origin and a tiny one too.
 TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
     gpu::test_context();
-    const Scene cornell = scene_at("cornell");
+    const Scene cornell = builtin_scene("cornell");
     for (const auto& [what, scene] : {std::pair<std::string, Scene>{"cornell", cornell},
-                                      {"spheres:45", scene_at("spheres:45")},
+                                      {"spheres:45", builtin_scene("spheres:45")},
                                       {"cornell x1e3 at 3e6", transformed(cornell, 1e3f, glm::vec3(3e6f, -1e6f, 2e6f))},
                                       {"cornell x1e-4", transformed(cornell, 1e-4f, glm::vec3(1e-3f))}}) {
         gpu::GpuScene gpu_scene;
@@ -353,15 +347,6 @@ TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
 // ---------------------------------------------------------------------------------------------------------------
 // The renderer against stage 02.
 
-RenderSettings small_settings(const Scene& s) {
-    RenderSettings settings;
-    settings.width = 64;
-    settings.height = 48;
-    settings.effects = analyze_effects(s);
-    settings.record_hits = true;
-    return settings;
-}
-
 FrameResult render_rh(const Scene& s, const RenderSettings& settings, HierarchyOptions o) {
     RayHierarchyRenderer renderer;
     renderer.hierarchy_options = o;
@@ -370,8 +355,8 @@ FrameResult render_rh(const Scene& s, const RenderSettings& settings, HierarchyO
 
 TEST(RayHierarchyRenderer, CornellEqualsStage02ForEveryBranchingAndALevelLimit) {
     gpu::test_context();
-    const Scene s = scene_at("cornell");
-    const RenderSettings settings = small_settings(s);
+    const Scene s = builtin_scene("cornell");
+    const RenderSettings settings = test_frame_settings(s);
     HybridRenderer stage02;
     const FrameResult reference = stage02.render(s, settings);
     for (const HierarchyOptions o :
@@ -396,8 +381,8 @@ TEST(RayHierarchyRenderer, CornellEqualsStage02ForEveryBranchingAndALevelLimit) 
 TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
     gpu::test_context();
     for (float time : {0.0f, 0.5f}) {
-        const Scene s = scene_at("dynamic", time);
-        const RenderSettings settings = small_settings(s);
+        const Scene s = builtin_scene("dynamic", time);
+        const RenderSettings settings = test_frame_settings(s);
         HybridRenderer stage02;
         expect_same_frame(render_rh(s, settings, {}), stage02.render(s, settings), "dynamic t=" + std::to_string(time));
     }
@@ -406,7 +391,7 @@ TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
 // A built-in scene on the GPU with the wavefront pipeline's frame begun over it: what GpuRayHierarchy::trace needs
 // besides the rays, for the tests that trace batches of their own.
 struct TraceSetup {
-    explicit TraceSetup(const std::string& name) : scene(scene_at(name)), wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {
+    explicit TraceSetup(const std::string& name) : scene(builtin_scene(name)), wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {
         gpu_scene.upload(scene);
         RenderSettings settings;
         settings.effects = analyze_effects(scene);
@@ -527,8 +512,8 @@ std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {
 // the hit list fills up and is pruned; the frame is the same, pair for pair, and so are the tests counted.
 TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
     gpu::test_context();
-    const Scene s = scene_at("cornell");
-    const RenderSettings settings = small_settings(s);
+    const Scene s = builtin_scene("cornell");
+    const RenderSettings settings = test_frame_settings(s);
     const FrameResult reference = render_rh(s, settings, {});
     HierarchyOptions tiny_options;
     tiny_options.pair_capacity = 256;
@@ -550,8 +535,8 @@ TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
 // frame equals stage 02's under the same limit, hit for hit in the same order, and the unlimited frame's image.
 TEST(RayHierarchyRenderer, ATinyStorageLimitGivesStage02sFrame) {
     gpu::test_context();
-    const Scene s = scene_at("cornell");
-    const RenderSettings settings = small_settings(s);
+    const Scene s = builtin_scene("cornell");
+    const RenderSettings settings = test_frame_settings(s);
     const FrameResult unlimited = render_rh(s, settings, {});
     ::setenv("RT_MAX_SSBO_BYTES", "49152", 1);
     const FrameResult tiny = render_rh(s, settings, {});

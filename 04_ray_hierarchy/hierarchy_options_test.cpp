@@ -4,27 +4,18 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "common/app/driver.h"
 #include "ray_hierarchy_renderer.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
 
-struct StageRun {
-    int rc;
-    std::string err;
-};
-
 StageRun run_stage_04(std::vector<std::string> args) {
-    args.insert(args.begin(), "04_ray_hierarchy");
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
     RayHierarchyRenderer renderer;
-    ::testing::internal::CaptureStderr();
-    const int rc = run_stage("04_ray_hierarchy", int(argv.size()), argv.data(), renderer);
-    return {rc, ::testing::internal::GetCapturedStderr()};
+    return run_stage_command("04_ray_hierarchy", renderer, std::move(args));
 }
 
 TEST(HierarchyOptions, BadValuesAreOneLineErrorsWithExit2) {
@@ -36,11 +27,7 @@ TEST(HierarchyOptions, BadValuesAreOneLineErrorsWithExit2) {
         std::filesystem::remove(out);
         std::vector<std::string> args = {"--scene", "builtin:whitted", "--width", "8", "--height", "6", "--out", out};
         args.insert(args.end(), bad.begin(), bad.end());
-        const StageRun r = run_stage_04(args);
-        EXPECT_EQ(r.rc, 2) << r.err;
-        EXPECT_EQ(r.err.rfind("04_ray_hierarchy: error: ", 0), 0u) << r.err;
-        EXPECT_NE(r.err.find(bad[0]), std::string::npos) << r.err;
-        EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+        expect_one_line_error(run_stage_04(args), "04_ray_hierarchy", bad[0]);
         EXPECT_FALSE(std::filesystem::exists(out)) << bad[0] << " " << bad[1];
     }
 }

@@ -8,23 +8,13 @@
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "sorting_renderer.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
 
-Scene scene_at(const std::string& name) {
-    FlattenOptions options;
-    options.aspect = 4.0f / 3.0f;
-    return flatten(make_builtin_scene(name), options);
-}
-
 FrameResult render_05(const Scene& s, int width, int height, SortOptions sort) {
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.effects = analyze_effects(s);
-    settings.record_hits = true;
-    settings.record_tests_per_pixel = true;
+    const RenderSettings settings = test_frame_settings(s, width, height, true);
     RaySortingRenderer renderer;
     renderer.sort_options = sort;
     return renderer.render(s, settings);
@@ -35,7 +25,7 @@ FrameResult render_05(const Scene& s, int width, int height, SortOptions sort) {
 // `shadow_batches`, when given, gets how many shadow batches were sorted.
 void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, int width, int height, bool compresses,
                                      std::uint64_t* shadow_batches = nullptr) {
-    const Scene s = scene_at(name);
+    const Scene s = builtin_scene(name);
     SortOptions off = on;
     off.sort = false;
     const FrameResult a = render_05(s, width, height, off), b = render_05(s, width, height, on);

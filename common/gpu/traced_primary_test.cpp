@@ -14,6 +14,7 @@
 #include "common/scene/builtin_scenes.h"
 #include "common/trace/whitted.h"
 #include "tests/hit_compare.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
@@ -21,13 +22,9 @@ namespace {
 TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
     gpu::test_context();
     const int width = 80, height = 60;
-    FlattenOptions options;
-    options.aspect = float(width) / float(height);
-    const Scene scene = flatten(make_builtin_scene("whitted"), options);
-    RenderSettings settings;
-    settings.width = width;
-    settings.height = height;
-    settings.effects = analyze_effects(scene);
+    const Scene scene = builtin_scene_for("whitted", width, height);
+    RenderSettings settings = test_frame_settings(scene, width, height);
+    settings.record_hits = false;   // the image and the counts
 
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
@@ -68,16 +65,10 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
 TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
     gpu::test_context();
     const int width = 64, height = 48;
-    FlattenOptions options;
-    options.aspect = float(width) / float(height);
     for (const bool coincident : {false, true}) {
-        Scene scene = flatten(make_builtin_scene("cutouts"), options);
+        Scene scene = builtin_scene_for("cutouts", width, height);
         if (coincident) scene = hard_cases::with_coincident_copies(scene);
-        RenderSettings settings;
-        settings.width = width;
-        settings.height = height;
-        settings.effects = analyze_effects(scene);
-        settings.record_hits = true;
+        const RenderSettings settings = test_frame_settings(scene, width, height);
         ASSERT_TRUE(settings.effects.cutouts && settings.effects.shadows);
 
         gpu::GpuScene gpu_scene;

@@ -24,27 +24,12 @@
 #include "gpu_test_context.h"
 #include "02_raster_hybrid/brute_force_traversal.h"
 #include "wavefront.h"
+#include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
 
 const gpu::Traversal kBruteForce{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}};
-
-Scene builtin(const std::string& name, int width, int height) {
-    FlattenOptions options;
-    options.aspect = float(width) / float(height);
-    return flatten(make_builtin_scene(name), options);
-}
-
-RenderSettings settings_for(const Scene& scene, int width, int height) {
-    RenderSettings s;
-    s.width = width;
-    s.height = height;
-    s.effects = analyze_effects(scene);
-    s.record_hits = true;
-    s.record_tests_per_pixel = true;
-    return s;
-}
 
 // One frame as stage 02 renders it: G-buffer, then the pipeline, per sample.
 FrameResult render_hybrid(const Scene& scene, const RenderSettings& settings, const gpu::Traversal& traversal,
@@ -104,8 +89,8 @@ std::uint64_t traced_rays(const FrameResult& r) {
 class OrderedQueues : public testing::TestWithParam<const char*> {};
 
 TEST_P(OrderedQueues, TwoRunsGiveIdenticalQueuesCountsAndImages) {
-    const Scene scene = builtin(GetParam(), 64, 48);
-    const RenderSettings settings = settings_for(scene, 64, 48);
+    const Scene scene = builtin_scene_for(GetParam(), 64, 48);
+    const RenderSettings settings = test_frame_settings(scene, 64, 48, true);
     const FrameResult first = render_hybrid(scene, settings, kBruteForce);
     const FrameResult second = render_hybrid(scene, settings, kBruteForce);
     expect_same_frame(first, second, true);
@@ -128,8 +113,8 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, OrderedQueues, testing::Values("whitted"
 // order of the parents.
 TEST(OrderedQueues, PrimaryHitsInTileMortonOrderSpawnedRaysGroupedByKind) {
     const int width = 20, height = 12;   // edge tiles only partly inside the image
-    const Scene scene = builtin("whitted", width, height);
-    const FrameResult r = render_hybrid(scene, settings_for(scene, width, height), kBruteForce);
+    const Scene scene = builtin_scene_for("whitted", width, height);
+    const FrameResult r = render_hybrid(scene, test_frame_settings(scene, width, height, true), kBruteForce);
     std::vector<std::uint32_t> expected;
     for (int ty = 0; ty < (height + 7) / 8; ++ty)
         for (int tx = 0; tx < (width + 7) / 8; ++tx)
@@ -170,8 +155,8 @@ TEST(OrderedQueues, PrimaryHitsInTileMortonOrderSpawnedRaysGroupedByKind) {
 // Records name rays in their tree (hit_record.h): a reflection (2p) or refraction (2p + 1) ray and a shadow ray
 // (path p) each come from a hit of the ray with path p of the same pixel.
 TEST(HitRecords, EveryRayHasTheParentHitItsPathNames) {
-    const Scene scene = builtin("whitted", 64, 48);
-    const FrameResult r = render_hybrid(scene, settings_for(scene, 64, 48), kBruteForce);
+    const Scene scene = builtin_scene_for("whitted", 64, 48);
+    const FrameResult r = render_hybrid(scene, test_frame_settings(scene, 64, 48, true), kBruteForce);
     std::set<std::pair<std::uint32_t, std::uint32_t>> hits;   // (pixel, path) of closest hits
     for (const HitRecord& h : r.hits)
         if (RayKind(h.kind_light & 0xff) != RayKind::Shadow && h.triangle >= 0)
@@ -199,7 +184,7 @@ TEST(HitRecords, EveryRayHasTheParentHitItsPathNames) {
 // The whitted scene (its mirror and glass add several terms per pixel) with one bright light instead of its own.
 // Both lights below give pixels far beyond the 32767 where the old 32-bit sum clamped or wrapped.
 Scene bright_scene(LightType type, float intensity, int width, int height) {
-    Scene scene = builtin("whitted", width, height);
+    Scene scene = builtin_scene_for("whitted", width, height);
     Light light;
     light.type = type;
     light.intensity = intensity;
@@ -236,7 +221,7 @@ Image render_stage01(const Scene& scene, const RenderSettings& settings) {
 // different triangles may differ: at most 0.5% of the pixels (visibility_test.cpp's bound).
 void expect_agrees_with_stage01(const Scene& scene, const char* what, float expected_at_least, int spp = 1) {
     const int width = 48, height = 36;
-    RenderSettings settings = settings_for(scene, width, height);
+    RenderSettings settings = test_frame_settings(scene, width, height, true);
     settings.spp = spp;
     settings.record_hits = false;
     const FrameResult gpu = render_hybrid(scene, settings, kBruteForce);
@@ -270,7 +255,7 @@ TEST(RadianceSum, SunOf1e5LuxAgreesWithStage01) {
 // Beyond 2^63 per sample a channel saturates at 2^63: never negative, never wrapped.
 TEST(RadianceSum, BeyondItsRangeSaturatesInsteadOfWrapping) {
     const Scene scene = bright_scene(LightType::Directional, 1e30f, 32, 24);
-    const FrameResult r = render_hybrid(scene, settings_for(scene, 32, 24), kBruteForce);
+    const FrameResult r = render_hybrid(scene, test_frame_settings(scene, 32, 24, true), kBruteForce);
     float brightest = 0.0f;
     for (const glm::vec3& p : r.image.pixels)
         for (int c = 0; c < 3; ++c) {
@@ -292,10 +277,10 @@ TEST(BatchTraversal, BruteForceInSlicesGivesIdenticalImagesHitsAndCounts) {
     std::size_t triangles = 0;
     gpu::BruteForceTraversal sliced([&] { return triangles; }, 7);
     for (const char* name : {"whitted", "cornell"}) {
-        const Scene scene = builtin(name, 64, 48);
+        const Scene scene = builtin_scene_for(name, 64, 48);
         triangles = scene.triangle_count();
         ASSERT_GT(triangles, 14u) << name;
-        const RenderSettings settings = settings_for(scene, 64, 48);
+        const RenderSettings settings = test_frame_settings(scene, 64, 48, true);
         const FrameResult per_ray = render_hybrid(scene, settings, kBruteForce);
         const int before = sliced.dispatches();
         const FrameResult batched = render_hybrid(scene, settings, sliced.traversal());
@@ -307,7 +292,7 @@ TEST(BatchTraversal, BruteForceInSlicesGivesIdenticalImagesHitsAndCounts) {
 // Whitted with eight lights (the scene's own, then copies moved around): shading runs once per light when the
 // shadow slots of all lights do not fit.
 Scene many_lights_scene(int width, int height) {
-    Scene scene = builtin("whitted", width, height);
+    Scene scene = builtin_scene_for("whitted", width, height);
     const Light original = scene.lights.at(0);
     for (int i = 1; i < 8; ++i) {
         Light l = original;
@@ -320,7 +305,7 @@ Scene many_lights_scene(int width, int height) {
 
 TEST(StorageLimit, TinyLimitGivesIdenticalImageCountsAndHits) {
     const Scene scene = many_lights_scene(64, 48);
-    const RenderSettings settings = settings_for(scene, 64, 48);
+    const RenderSettings settings = test_frame_settings(scene, 64, 48, true);
     const FrameResult unlimited = render_hybrid(scene, settings, kBruteForce);
     // 48 KiB: the radiance sums of 2 of the 6 rows of 8x8 tiles (18432 bytes per row), 256 hits per batch, and one
     // light's shadow rays per shade run next to the reflection and refraction slots.
@@ -353,7 +338,7 @@ FrameResult render_traced(const Scene& scene, const RenderSettings& settings, st
 
 TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
     const Scene scene = many_lights_scene(64, 48);
-    const RenderSettings settings = settings_for(scene, 64, 48);
+    const RenderSettings settings = test_frame_settings(scene, 64, 48, true);
     const FrameResult unlimited = render_traced(scene, settings, 0);
     const FrameResult tiny = render_traced(scene, settings, 48 << 10);
     expect_same_frame(unlimited, tiny, false);
@@ -364,9 +349,9 @@ TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
 }
 
 TEST(StorageLimit, ImageBeyondTheLimitIsRefusedWithAClearError) {
-    const Scene scene = builtin("diffuse", 64, 48);
+    const Scene scene = builtin_scene_for("diffuse", 64, 48);
     try {
-        render_hybrid(scene, settings_for(scene, 64, 48), kBruteForce, 16 << 10);   // a row of tiles: 18432
+        render_hybrid(scene, test_frame_settings(scene, 64, 48, true), kBruteForce, 16 << 10);   // a row of tiles: 18432
         FAIL() << "no error";
     } catch (const std::exception& e) {
         EXPECT_NE(std::string(e.what()).find("storage block limit"), std::string::npos) << e.what();
@@ -380,9 +365,9 @@ TEST(LoopBudget, AFrameWhoseLoopsTheDriverCutsShortIsRefusedNotWrong) {
     gpu::test_context();
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const bool llvmpipe = renderer && std::string(renderer).find("llvmpipe") != std::string::npos;
-    const Scene scene = builtin("spheres:300", 16, 12);
+    const Scene scene = builtin_scene_for("spheres:300", 16, 12);
     ASSERT_GT(scene.triangle_count(), 65535u);
-    RenderSettings settings = settings_for(scene, 16, 12);
+    RenderSettings settings = test_frame_settings(scene, 16, 12, true);
     if (llvmpipe) {
         try {
             render_hybrid(scene, settings, kBruteForce);
@@ -394,8 +379,8 @@ TEST(LoopBudget, AFrameWhoseLoopsTheDriverCutsShortIsRefusedNotWrong) {
         EXPECT_GT(render_hybrid(scene, settings, kBruteForce).stats.counters.intersection_tests, 0u);
     }
     // Within the budget the probe stays silent: the whitted scene renders (every other test renders too).
-    const Scene small = builtin("whitted", 16, 12);
-    EXPECT_NO_THROW(render_hybrid(small, settings_for(small, 16, 12), kBruteForce));
+    const Scene small = builtin_scene_for("whitted", 16, 12);
+    EXPECT_NO_THROW(render_hybrid(small, test_frame_settings(small, 16, 12, true), kBruteForce));
 }
 
 }  // namespace
