@@ -107,7 +107,7 @@ void GBuffer::shade_sample(Wavefront& wavefront, glm::vec2 offset) {
     std::string key;
     for (const auto& [k, v] : wavefront.defines()) key.append(k).append("=").append(v).append(";");
     if (key != primary_hits_key_) {
-        primary_hits_ = Program::compute("02_raster_hybrid/shaders/primary_hits.comp", wavefront.defines());
+        primary_hits_ = Program::compute(kPrimaryHitsProgram, wavefront.defines());
         // Cut-outs: pixels whose candidate may be transparent defer their camera ray (shaders/deferred_rays.comp).
         deferred_rays_ = wavefront.defines().count("ENABLE_CUTOUTS")
                              ? Program::compute("02_raster_hybrid/shaders/deferred_rays.comp", wavefront.defines())

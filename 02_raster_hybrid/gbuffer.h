@@ -23,6 +23,9 @@ namespace rt::gpu {
 
 class GBuffer {
 public:
+    // The pass that turns pixels into primary hits (exercise 02.primary_hits), by its name in the stats.
+    static constexpr const char* kPrimaryHitsProgram = "02_raster_hybrid/shaders/primary_hits.comp";
+
     GBuffer();   // needs a current GL context
     GBuffer(const GBuffer&) = delete;
     GBuffer& operator=(const GBuffer&) = delete;

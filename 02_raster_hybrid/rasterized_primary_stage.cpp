@@ -1,5 +1,7 @@
 #include "rasterized_primary_stage.h"
 
+#include <utility>
+
 #include "gbuffer.h"
 
 namespace rt {
@@ -25,7 +27,7 @@ void RasterizedPrimaryStage::rasterize_and_shade_sample(const Scene& scene, cons
 }
 
 std::vector<std::string> RasterizedPrimaryStage::stage_programs() const {
-    if (!gbuffer_) return {kPrimaryHitsProgram};
+    if (!gbuffer_) return {gpu::GBuffer::kPrimaryHitsProgram};
     return gbuffer_->programs();
 }
 

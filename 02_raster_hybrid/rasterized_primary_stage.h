@@ -23,9 +23,6 @@ public:
     explicit RasterizedPrimaryStage(gpu::Traversal traversal);
     ~RasterizedPrimaryStage() override;
 
-    // The program that turns G-buffer pixels into primary hits (its name in the stats' `programs`).
-    static constexpr const char* kPrimaryHitsProgram = "02_raster_hybrid/shaders/primary_hits.comp";
-
 protected:
     // One sample: this sample's G-buffer (timed as "raster"), whose pixels the pipeline then shades as primary hits
     // before tracing everything after them with the stage's traversal.
