@@ -1,6 +1,9 @@
 #include "sorting_renderer.h"
 
+#include <cmath>
+
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
 #include "common/app/options.h"
 #include "common/gpu/bindings.h"
@@ -15,7 +18,22 @@ const char* const kBatchKind[2] = {"trace", "shadow"};
 
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
+// The gather and scatter passes' buffers (shaders/ray_sort.glsl: RS_STAGE_BINDING_0..2): the stage's own points,
+// from the traversal's first (stage 04 rebinds its own before each of its passes).
+constexpr unsigned kStageBinding[] = {gpu::kBindingWavefrontTraversalFirst + 0,
+                                      gpu::kBindingWavefrontTraversalFirst + 1,
+                                      gpu::kBindingWavefrontTraversalFirst + 2};
+
 }  // namespace
+
+const char* sort_mode_name(SortMode mode) {
+    switch (mode) {
+        case SortMode::off: return "off";
+        case SortMode::on: return "on";
+        case SortMode::automatic: return "auto";
+    }
+    return "?";
+}
 
 RaySortingRenderer::RaySortingRenderer() = default;
 RaySortingRenderer::~RaySortingRenderer() = default;
@@ -23,9 +41,13 @@ RaySortingRenderer::~RaySortingRenderer() = default;
 void RaySortingRenderer::add_options(CLI::App& app) {
     RayHierarchyRenderer::add_options(app);
     app.add_option_function<std::string>(
-           "--sort", [this](const std::string& s) { sort_options.sort = s == "on"; },
-           "Sort each batch of rays before building the hierarchy: on (default) or off (exactly stage 04)")
-        ->check(CLI::IsMember({"on", "off"}));
+           "--sort",
+           [this](const std::string& s) {
+               sort_options.mode = s == "on" ? SortMode::on : s == "off" ? SortMode::off : SortMode::automatic;
+           },
+           "Sort each batch of rays before building the hierarchy: auto (default: keep the sorted order only where "
+           "it makes the lowest nodes tighter), on (always) or off (exactly stage 04)")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
     app.add_option("--key-bits", sort_options.key_bits,
                    "Bits of a ray's key for its origin cell (cubic cells over the scene box) and direction cell")
         ->capture_default_str()
@@ -65,8 +87,11 @@ void RaySortingRenderer::compile() {
 void RaySortingRenderer::build(const Scene& scene, const RenderSettings& settings) {
     RayHierarchyRenderer::build(scene, settings);
     batch_stats_ = {};
-    if (!sort_options.sort) return;
+    if (!sort_options.sorts()) return;
     compile();
+    choice_.reset_tally();
+    const float diagonal = glm::length(scene.bounds.hi - scene.bounds.lo);
+    diagonal_ = std::isfinite(diagonal) && diagonal > 0.0f ? diagonal : 1.0f;
     const unsigned lights = unsigned(scene.lights.size());
     layouts_[0] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, sort_options.direction_bits,
                                   lights, KeyOrder::direction_first);
@@ -75,7 +100,7 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
 }
 
 void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
-    if (!sort_options.sort || in.count == 0) {
+    if (!sort_options.sorts() || in.count == 0) {
         RayHierarchyRenderer::trace_batch(in, shadow);
         return;
     }
@@ -86,11 +111,14 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
         auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
         sorter_->layout = layouts_[shadow ? 1 : 0];   // ray_keys.h: which order suits which rays
         sorter_->sort(in.rays, in.first, n, order_);
+        if (sort_options.mode == SortMode::automatic)
+            choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, hierarchy_options.branching, diagonal_,
+                           shadow ? 1 : 0);
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
         gather_.set("rs_count", unsigned(n));
-        in.rays.bind_range(gpu::kBindingScanIn, 0, (in.first + n) * sizeof(gpu::WavefrontRay));
-        order_.bind_range(gpu::kBindingScanOut, 0, n * 4);
-        sorted_rays_.bind_range(gpu::kBindingScanSums, 0, n * sizeof(gpu::WavefrontRay));
+        in.rays.bind_range(kStageBinding[0], 0, (in.first + n) * sizeof(gpu::WavefrontRay));
+        order_.bind_range(kStageBinding[1], 0, n * 4);
+        sorted_rays_.bind_range(kStageBinding[2], 0, n * sizeof(gpu::WavefrontRay));
         gather_.dispatch_threads(n);
         barrier();
     }
@@ -105,9 +133,9 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     scatter_.set("rs_count", unsigned(n));
     scatter_.set("rs_first", unsigned(in.first));
     scatter_.set("rs_stride", stride);
-    order_.bind_range(gpu::kBindingScanIn, 0, n * 4);
-    sorted_results_.bind_range(gpu::kBindingScanOut, 0, n * stride * 4);
-    in.results.bind_range(gpu::kBindingScanSums, 0, n * stride * 4);
+    order_.bind_range(kStageBinding[0], 0, n * 4);
+    sorted_results_.bind_range(kStageBinding[1], 0, n * stride * 4);
+    in.results.bind_range(kStageBinding[2], 0, n * stride * 4);
     scatter_.dispatch_threads(n);
     barrier();
     gpu::check_gl("05_ray_sorting: sorted batch");
@@ -115,17 +143,20 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
 
 std::vector<std::string> RaySortingRenderer::stage_programs() const {
     std::vector<std::string> programs = RayHierarchyRenderer::stage_programs();
-    if (sort_options.sort)
+    if (sort_options.sorts())
         for (const char* p : {"ray_keys.comp", "chunk_heads.comp", "chunks.comp", "chunk_sizes.comp", "skeleton.comp",
                               "ray_gather.comp", "result_scatter.comp"})
+            programs.push_back(std::string("05_ray_sorting/shaders/") + p);
+    if (sort_options.mode == SortMode::automatic)
+        for (const char* p : {"order_cost.comp", "order_choice.comp"})
             programs.push_back(std::string("05_ray_sorting/shaders/") + p);
     return programs;
 }
 
 void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     RayHierarchyRenderer::add_stage_stats(result);
-    nlohmann::json rs = {{"sort", sort_options.sort}};
-    if (sort_options.sort) {
+    nlohmann::json rs = {{"sort", sort_options.sorts()}, {"mode", sort_mode_name(sort_options.mode)}};
+    if (sort_options.sorts()) {
         nlohmann::json key = {{"key_bits", sort_options.key_bits},
                               {"direction_bits", sort_options.direction_bits},
                               {"shadow_direction_bits", shadow_direction_bits()},
@@ -144,14 +175,21 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
         rs["key"] = key;
         const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
         nlohmann::json batches = nlohmann::json::object();
+        // Batches (and their rays) whose sorted order was kept: all of them with --sort on; with auto the GPU's
+        // choice, read here once per frame.
+        std::array<GpuOrderChoice::Tally, 2> kept{};
+        if (sort_options.mode == SortMode::automatic) kept = choice_.tally();
         for (int k = 0; k < 2; ++k) {
             const BatchStats& s = batch_stats_[std::size_t(k)];
             if (s.batches == 0) continue;
+            if (sort_options.mode == SortMode::on) kept[std::size_t(k)] = {s.batches, s.rays};
             batches[kBatchKind[k]] = {
                 {"batches", s.batches},
                 {"rays", s.rays},
                 {"chunks", s.chunks},
                 {"rays_per_chunk", s.chunks ? double(s.rays) / double(s.chunks) : 0.0},
+                {"sorted_batches", kept[std::size_t(k)].batches},
+                {"sorted_rays", kept[std::size_t(k)].rays},
                 {"sort_ms", pass_ms.contains(kSortPhase[k]) ? double(pass_ms[kSortPhase[k]]) : 0.0}};
         }
         rs["batches"] = batches;

@@ -1,7 +1,9 @@
 // Stage 05: stage 04's ray-space hierarchy over sorted rays (Garanzha & Loop 2010; Reis's pipeline). For every batch
 // the wavefront pipeline hands over, the rays are sorted by key (ray_sort.h), copied into sorted order, traced
 // through the stage-04 hierarchy, and their results put back in queue order: the pipeline (and so the image, the
-// hits and the ray counts) cannot tell the difference; only the hierarchy's cost changes. --sort off is stage 04.
+// hits and the ray counts) cannot tell the difference; only the hierarchy's cost changes. --sort off is stage 04;
+// --sort auto (the default) keeps a batch's sorted order only when it makes the hierarchy's lowest nodes tighter
+// than the queue's order (order_choice.h), so sorting never widens the nodes it was meant to tighten.
 #pragma once
 
 #include <array>
@@ -9,14 +11,23 @@
 #include <memory>
 
 #include "04_ray_hierarchy/ray_hierarchy_renderer.h"
+#include "order_choice.h"
 #include "ray_sort.h"
 
 namespace rt {
 
 // The key of each batch kind (ray_keys.h): reflection and refraction rays [coarse direction | cubic origin], shadow
 // rays [cubic origin | direction].
+enum class SortMode {
+    off,         // queue order: exactly stage 04
+    on,          // every batch sorted
+    automatic,   // every batch sorted, the sorted order kept only where it is tighter (order_choice.h)
+};
+const char* sort_mode_name(SortMode mode);   // "off", "on", "auto"
+
 struct SortOptions {
-    bool sort = true;                    // --sort on|off
+    SortMode mode = SortMode::automatic;   // --sort auto|on|off
+    bool sorts() const { return mode != SortMode::off; }
     unsigned key_bits = 30;              // --key-bits: origin + direction bits of a key
     unsigned direction_bits = 4;         // --direction-bits: the coarse direction cell of reflection/refraction keys
     unsigned shadow_direction_bits = 12; // --shadow-direction-bits: the direction cell below a shadow key's origin
@@ -40,10 +51,12 @@ private:
     struct BatchStats {   // per batch kind: 0 = trace (reflection, refraction), 1 = shadow
         std::uint64_t batches = 0, rays = 0, chunks = 0;
     };
+    float diagonal_ = 1.0f;   // the scene box's diagonal (the choice's unit of width)
     void compile();
     unsigned shadow_direction_bits() const;   // sort_options' value; above key_bits (the default, a short key) half of it
 
     std::unique_ptr<RaySorter> sorter_;   // created with the first frame (needs the context)
+    GpuOrderChoice choice_;
     std::array<RayKeyLayout, 2> layouts_{};   // per batch kind, set per frame (the scene box, the lights)
     gpu::Program gather_, scatter_;
     gpu::Buffer order_, sorted_rays_, sorted_results_;

@@ -27,7 +27,7 @@ void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, in
                                      std::uint64_t* shadow_batches = nullptr) {
     const Scene s = builtin_scene(name);
     SortOptions off = on;
-    off.sort = false;
+    off.mode = SortMode::off;
     const FrameResult a = render_05(s, width, height, off), b = render_05(s, width, height, on);
     expect_same_frame(a, b, name);
     if (::testing::Test::HasFatalFailure()) return;
@@ -52,11 +52,18 @@ void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, in
     if (shadow_batches) *shadow_batches = std::uint64_t(shadow["batches"]);
 }
 
+// --sort on: every batch sorted, whatever the choice of --sort auto would be.
+SortOptions always_sorted() {
+    SortOptions on;
+    on.mode = SortMode::on;
+    return on;
+}
+
 TEST(RaySortingRenderer, SortOnAndOffGiveTheSameImageHitsAndRayCounts) {
     gpu::test_context();
-    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true);       // shadow, reflection and refraction rays
-    expect_same_frame_sorted_or_not("mirror_box", {}, 48, 36, false);    // many bounces between mirrors
-    SortOptions coarse;
+    expect_same_frame_sorted_or_not("cornell", always_sorted(), 64, 48, true);   // shadow, reflection, refraction
+    expect_same_frame_sorted_or_not("mirror_box", always_sorted(), 48, 36, false);   // many bounces between mirrors
+    SortOptions coarse = always_sorted();
     coarse.key_bits = 9;   // few, large cells: long chunks
     coarse.direction_bits = 3;
     expect_same_frame_sorted_or_not("whitted", coarse, 64, 48, true);
@@ -67,11 +74,51 @@ TEST(RaySortingRenderer, SortOnAndOffGiveTheSameImageHitsAndRayCounts) {
 TEST(RaySortingRenderer, ManySmallBatchesUnderATinyStorageLimitGiveTheSameFrame) {
     gpu::test_context();
     std::uint64_t batches = 0, small_batches = 0;
-    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true, &batches);
+    expect_same_frame_sorted_or_not("cornell", always_sorted(), 64, 48, true, &batches);
     ::setenv("RT_MAX_SSBO_BYTES", "49152", 1);
-    expect_same_frame_sorted_or_not("cornell", {}, 64, 48, true, &small_batches);
+    expect_same_frame_sorted_or_not("cornell", always_sorted(), 64, 48, true, &small_batches);
     ::unsetenv("RT_MAX_SSBO_BYTES");
     EXPECT_GT(small_batches, 2 * batches);
+}
+
+// --sort auto: the same frame as off and on; it keeps a batch's sorted order only where that order's level-1 nodes
+// are tighter, and says how many it kept. Where it keeps none the hierarchy is exactly stage 04's (same node tests);
+// where it keeps all, exactly --sort on's.
+TEST(RaySortingRenderer, AutoGivesTheSameFrameAndKeepsTheSortOnlyWhereItIsTighter) {
+    gpu::test_context();
+    for (const char* name : {"cornell", "whitted", "spheres:45", "mirror_box"}) {
+        const Scene s = builtin_scene(name);
+        SortOptions off, on = always_sorted(), automatic;
+        off.mode = SortMode::off;
+        ASSERT_EQ(automatic.mode, SortMode::automatic) << "auto is the default";
+        const FrameResult a = render_05(s, 48, 36, off), b = render_05(s, 48, 36, on), c = render_05(s, 48, 36,
+                                                                                                   automatic);
+        expect_same_frame(a, c, name);
+        expect_same_frame(b, c, name);
+        EXPECT_EQ(c.extra["ray_sorting"]["mode"], "auto") << name;
+        const auto& batches = c.extra["ray_sorting"]["batches"];
+        std::uint64_t kept = 0, all = 0;
+        for (const char* kind : {"trace", "shadow"}) {
+            if (!batches.contains(kind)) continue;
+            EXPECT_LE(std::uint64_t(batches[kind]["sorted_batches"]), std::uint64_t(batches[kind]["batches"]));
+            EXPECT_LE(std::uint64_t(batches[kind]["sorted_rays"]), std::uint64_t(batches[kind]["rays"]));
+            kept += std::uint64_t(batches[kind]["sorted_batches"]);
+            all += std::uint64_t(batches[kind]["batches"]);
+            EXPECT_EQ(b.extra["ray_sorting"]["batches"][kind]["sorted_batches"], b.extra["ray_sorting"]["batches"][kind]
+                                                                                     ["batches"]) << name;
+        }
+        const auto node_tests = [](const FrameResult& r) {
+            std::uint64_t n = 0;
+            for (const auto& [kind, k] : r.extra["ray_hierarchy"]["kinds"].items()) n += std::uint64_t(k["node_tests"]);
+            return n;
+        };
+        if (kept == 0) {
+            EXPECT_EQ(node_tests(c), node_tests(a)) << name << ": no sort kept is stage 04";
+        }
+        if (kept == all) {
+            EXPECT_EQ(node_tests(c), node_tests(b)) << name << ": every sort kept is --sort on";
+        }
+    }
 }
 
 }  // namespace

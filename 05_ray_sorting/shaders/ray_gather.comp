@@ -5,9 +5,9 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = RS_BINDING_0) readonly buffer Rays { RsRay rs_rays[]; };
-layout(std430, binding = RS_BINDING_1) readonly buffer Order { uint rs_order[]; };
-layout(std430, binding = RS_BINDING_2) writeonly buffer Sorted { RsRay rs_sorted[]; };
+layout(std430, binding = RS_STAGE_BINDING_0) readonly buffer Rays { RsRay rs_rays[]; };
+layout(std430, binding = RS_STAGE_BINDING_1) readonly buffer Order { uint rs_order[]; };
+layout(std430, binding = RS_STAGE_BINDING_2) writeonly buffer Sorted { RsRay rs_sorted[]; };
 
 uniform uint rs_count;
 

@@ -1,7 +1,10 @@
 // Shared by the ray-sorting passes (ray_sort.h): bindings, the queued ray's layout, and the ray key.
 //
-// Bindings: the passes reuse the common primitives' points 8..14 (bindings.glsl), which every primitive rebinds for
-// each call, so sorting disturbs neither the scene (0..7) nor the wavefront pipeline and its traversal (16..).
+// Bindings: the sorting passes (keys, compression, decompression) are a primitive like the scan and the radix sort
+// they call, and reuse the primitives' points 8..14 (bindings.glsl), which every primitive rebinds for each call, so
+// sorting disturbs neither the scene (0..7) nor the wavefront pipeline (16..23). The gather and scatter passes move
+// the pipeline's own rays and results, so they bind as a stage does: from the traversal's first point (24; stage 04
+// rebinds its buffers there before each of its passes).
 #include "bindings.glsl"
 #include "compute.glsl"
 
@@ -12,6 +15,9 @@
 #define RS_BINDING_4 RT_BINDING_COMPACT_OFFSETS
 #define RS_BINDING_5 RT_BINDING_COMPACT_VALUES
 #define RS_BINDING_6 RT_BINDING_COMPACT_OUT
+#define RS_STAGE_BINDING_0 (RT_BINDING_STAGE_FIRST + 8)
+#define RS_STAGE_BINDING_1 (RT_BINDING_STAGE_FIRST + 9)
+#define RS_STAGE_BINDING_2 (RT_BINDING_STAGE_FIRST + 10)
 
 // WavefrontRay (common/shaders/wavefront/wavefront.glsl), 64 bytes std430; only what the key reads is named.
 struct RsRay {

@@ -6,9 +6,9 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = RS_BINDING_0) readonly buffer Order { uint rs_order[]; };
-layout(std430, binding = RS_BINDING_1) readonly buffer SortedResults { uint rs_sorted_results[]; };
-layout(std430, binding = RS_BINDING_2) writeonly buffer Results { uint rs_results[]; };
+layout(std430, binding = RS_STAGE_BINDING_0) readonly buffer Order { uint rs_order[]; };
+layout(std430, binding = RS_STAGE_BINDING_1) readonly buffer SortedResults { uint rs_sorted_results[]; };
+layout(std430, binding = RS_STAGE_BINDING_2) writeonly buffer Results { uint rs_results[]; };
 
 uniform uint rs_count;
 uniform uint rs_first;

@@ -1,0 +1,106 @@
+#include "order_choice.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/gpu/bindings.h"
+#include "common/gpu/wavefront.h"
+
+namespace rt {
+
+std::uint32_t order_fixed_width(const RhNode& node, float longest, float diagonal) {
+    if (node.empty()) return 0;
+    const auto widest = std::uint32_t(kOrderMaxWidth * kOrderWidthUnits);
+    if (node.cone.w >= kRhAllDirections) return widest;
+    const float reach = std::isfinite(longest) ? std::min(longest, kOrderReach * diagonal) : kOrderReach * diagonal;
+    const float width = node.sphere.w + reach * std::sin(std::min(node.cone.w, 1.57079637f));
+    const float units = width / diagonal * kOrderWidthUnits;
+    if (!(units < kOrderMaxWidth * kOrderWidthUnits)) return widest;
+    return std::uint32_t(units);
+}
+
+std::uint64_t order_cost(const std::vector<OrderRay>& rays, const std::vector<std::uint32_t>& order, int branching,
+                         float diagonal) {
+    const std::size_t b = std::size_t(branching);
+    std::uint64_t sum = 0;
+    for (std::size_t first = 0; first < rays.size(); first += b) {
+        const std::size_t count = std::min(b, rays.size() - first);
+        RhNode kids[16];
+        float longest = 0.0f;
+        for (std::size_t k = 0; k < count; ++k) {
+            const OrderRay& r = rays[order.empty() ? first + k : order[first + k]];
+            kids[k] = rh_leaf(r.origin, r.direction);
+            longest = std::max(longest, r.tmax * glm::length(r.direction));
+        }
+        sum += order_fixed_width(rh_union(kids, count), longest, diagonal);
+    }
+    return sum;
+}
+
+namespace {
+// shaders/order_choice.glsl: OC_BINDING_ORDER, _COST, _TALLY (the stage's own points; 04 rebinds its own per pass).
+constexpr unsigned kBindingOrder = gpu::kBindingWavefrontTraversalFirst + 0;
+constexpr unsigned kBindingCost = gpu::kBindingWavefrontTraversalFirst + 1;
+constexpr unsigned kBindingTally = gpu::kBindingWavefrontTraversalFirst + 2;
+
+void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
+
+std::uint64_t u64(const std::uint32_t* lo_hi) { return std::uint64_t(lo_hi[1]) << 32 | lo_hi[0]; }
+}  // namespace
+
+void GpuOrderChoice::compile(const gpu::ShaderDefines& defines) {
+    std::string key;
+    for (const auto& [name, value] : defines) key += name + "=" + value + ";";
+    if (cost_ && key == key_) return;
+    cost_ = gpu::Program::compute("05_ray_sorting/shaders/order_cost.comp", defines);
+    choice_ = gpu::Program::compute("05_ray_sorting/shaders/order_choice.comp", defines);
+    key_ = key;
+    if (!tally_) reset_tally();
+}
+
+void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first,
+                            std::size_t count, gpu::Buffer& order, int branching, float diagonal, int kind) {
+    compile(defines);
+    if (count == 0) return;
+    const std::uint32_t zero[4] = {};
+    if (!costs_) costs_ = gpu::Buffer(sizeof zero);
+    costs_.upload(zero, sizeof zero);
+    rays.bind(gpu::kBindingWavefrontRaysIn);
+    order.bind_range(kBindingOrder, 0, count * 4);
+    costs_.bind(kBindingCost);
+    tally_.bind(kBindingTally);
+
+    const std::size_t nodes = (count + std::size_t(branching) - 1) / std::size_t(branching);
+    cost_.set("oc_count", unsigned(count));
+    cost_.set("oc_first", unsigned(first));
+    cost_.set("oc_branching", unsigned(branching));
+    cost_.set("oc_diagonal", diagonal);
+    cost_.dispatch_threads(nodes);   // one thread per level-1 node; each work group adds its sums once
+    barrier();
+    choice_.set("oc_count", unsigned(count));
+    choice_.set("oc_first", unsigned(first));
+    choice_.set("oc_kind", unsigned(kind));
+    choice_.dispatch_threads(count);
+    barrier();
+    gpu::check_gl("05_ray_sorting: order choice");
+}
+
+std::array<std::uint64_t, 2> GpuOrderChoice::last_costs() const {
+    std::uint32_t v[4] = {};
+    if (costs_) costs_.download(v, sizeof v);
+    return {u64(v), u64(v + 2)};
+}
+
+std::array<GpuOrderChoice::Tally, 2> GpuOrderChoice::tally() const {
+    std::uint32_t v[8] = {};
+    if (tally_) tally_.download(v, sizeof v);
+    return {Tally{u64(v), u64(v + 2)}, Tally{u64(v + 4), u64(v + 6)}};
+}
+
+void GpuOrderChoice::reset_tally() {
+    const std::uint32_t zero[8] = {};
+    if (!tally_) tally_ = gpu::Buffer(sizeof zero);
+    tally_.upload(zero, sizeof zero);
+}
+
+}  // namespace rt

@@ -1,0 +1,76 @@
+// --sort auto: per batch, keep the sorted order only when it makes stage 04's lowest nodes tighter than the queue's
+// order does. The C++ twin of shaders/order_choice.glsl, order_cost.comp and order_choice.comp (the GPU decides
+// without a read-back; these are what the tests compare it with).
+//
+// Why a choice: the wavefront queue is already coherent (8x8 pixel tiles in Morton order), so for rays one bounce
+// from the camera a sort can only match it, and its cell boundaries sometimes split neighbours the queue kept
+// together (README.md, "Measured with the object tree": sorting alone lost on 6 of 11 scenes by up to 3% of the
+// leaf pairs). The cost proxy is the level-1 nodes' beam width where they meet the scene: level 1 (B rays) is the
+// side every (ray, object) pair splits down to, so its width decides how many pairs reach the exact test.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "04_ray_hierarchy/ray_hierarchy.h"
+#include "common/gpu/buffer.h"
+#include "common/gpu/shader.h"
+
+namespace rt {
+
+// Fixed point of the widths (OC_UNITS, OC_MAX_WIDTH): 1/4096 of the scene's diagonal, at most 4 diagonals.
+constexpr float kOrderWidthUnits = 4096.0f;
+constexpr float kOrderMaxWidth = 4.0f;
+constexpr float kOrderReach = 0.125f;   // OC_REACH: the width is taken at this part of the diagonal (or the ray's end)
+
+// A level-1 node's width radius + L sin(min(spread, pi/2)), L = min(longest, kOrderReach diagonal) (every direction:
+// the most),
+// in those units, rounded down; 0 for an empty node.
+std::uint32_t order_fixed_width(const RhNode& node, float longest, float diagonal);
+
+// A ray as the choice reads it: the hierarchy's leaf, and its length tmax |d|.
+struct OrderRay {
+    glm::vec3 origin, direction;
+    float tmax = 0.0f;
+};
+
+// The summed width of the level-1 nodes over rays[order[0..n)] taken B at a time (order empty: queue order).
+std::uint64_t order_cost(const std::vector<OrderRay>& rays, const std::vector<std::uint32_t>& order, int branching,
+                         float diagonal);
+
+// The sorted order is kept only when tighter by more than 1/32 of the queue's width (OC_MARGIN_DENOMINATOR): the
+// width is a proxy of the cost, and a sort that gains less is not worth its passes (builtin:diffuse's shadow batch:
+// 0.9992 of the queue's width, 1.8% more leaf pairs). In double, as on the GPU: exact for sums below 2^53.
+constexpr double kOrderMarginDenominator = 32.0;
+inline bool keep_sorted_order(std::uint64_t queue_cost, std::uint64_t sorted_cost) {
+    return double(sorted_cost) * kOrderMarginDenominator < double(queue_cost) * (kOrderMarginDenominator - 1.0);
+}
+
+// The choice on the GPU: shaders/order_cost.comp sums both widths, shaders/order_choice.comp overwrites `order` with
+// queue order (first + i) unless the sorted one is tighter. No read-back: the counts reach the CPU with the stats.
+class GpuOrderChoice {
+public:
+    // rays[first, first + count) of the batch, `order` its sorted order (RaySorter::sort); kind: 0 trace, 1 shadow.
+    // `defines`: the wavefront's (the passes read its rays through wavefront.glsl).
+    void choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first, std::size_t count,
+                gpu::Buffer& order, int branching, float diagonal, int kind);
+    // The last batch's sums, queue then sorted (a read-back: for the tests).
+    std::array<std::uint64_t, 2> last_costs() const;
+    // Per batch kind since reset_tally(): batches and rays that kept the sorted order (a read-back).
+    struct Tally {
+        std::uint64_t batches = 0, rays = 0;
+    };
+    std::array<Tally, 2> tally() const;
+    void reset_tally();
+
+private:
+    void compile(const gpu::ShaderDefines& defines);
+    std::string key_;
+    gpu::Program cost_, choice_;
+    gpu::Buffer costs_, tally_;
+};
+
+}  // namespace rt

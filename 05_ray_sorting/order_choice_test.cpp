@@ -1,0 +1,182 @@
+// --sort auto's choice (order_choice.h): the GPU's width sums against the CPU twin's, and the order it leaves.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+
+#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/wavefront.h"
+#include "order_choice.h"
+
+namespace rt {
+namespace {
+
+using gpu::Buffer;
+
+std::vector<OrderRay> order_rays(const std::vector<gpu::WavefrontRay>& rays) {
+    std::vector<OrderRay> out;
+    for (const gpu::WavefrontRay& r : rays) out.push_back({r.origin, r.direction, r.tmax});
+    return out;
+}
+
+gpu::WavefrontRay ray(glm::vec3 origin, glm::vec3 direction, float tmax) {
+    gpu::WavefrontRay r{};
+    r.origin = origin;
+    r.direction = direction;
+    r.tmax = tmax;
+    return r;
+}
+
+struct Case {
+    std::string name;
+    std::vector<gpu::WavefrontRay> rays;   // the whole queue; the batch is [first, first + count)
+    std::size_t first = 0;
+    std::vector<std::uint32_t> sorted;     // the batch's sorted order (queue indices)
+};
+
+// Two clusters far apart, interleaved in the queue: sorting them apart makes every node tight.
+Case interleaved_clusters() {
+    Case c{"interleaved clusters", {}, 5, {}};
+    for (int i = 0; i < 5; ++i) c.rays.push_back(ray({9, 9, 9}, {1, 0, 0}, 1.0f));   // before the batch
+    for (int i = 0; i < 64; ++i)
+        c.rays.push_back(ray(i % 2 ? glm::vec3(-1 + 0.001f * i, 0, 0) : glm::vec3(1, 0.001f * i, 0),
+                             i % 2 ? glm::vec3(0, 1, 0) : glm::vec3(0, -1, 0.1f), INFINITY));
+    for (std::uint32_t i = 0; i < 64; i += 2) c.sorted.push_back(std::uint32_t(c.first) + i);
+    for (std::uint32_t i = 1; i < 64; i += 2) c.sorted.push_back(std::uint32_t(c.first) + i);
+    return c;
+}
+
+// A coherent queue (a row of parallel rays) and a "sorted" order that scatters it: the queue's order stays.
+Case scrambled_row() {
+    Case c{"scrambled row", {}, 0, {}};
+    for (int i = 0; i < 1000; ++i) c.rays.push_back(ray({0.01f * i, 0, 0}, {0, 0, 1}, 2.0f));
+    c.sorted.resize(1000);
+    std::iota(c.sorted.begin(), c.sorted.end(), 0u);
+    std::mt19937 rng(3);
+    std::shuffle(c.sorted.begin(), c.sorted.end(), rng);
+    return c;
+}
+
+// Adversarial rays: zero, NaN and infinite directions and origins, huge and tiny scales, negative and NaN tmax,
+// a count that leaves a last node of fewer than B rays; the "sorted" order reversed.
+Case adversarial() {
+    Case c{"adversarial", {}, 3, {}};
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = INFINITY;
+    std::mt19937 rng(7);
+    std::normal_distribution<float> normal;
+    for (int i = 0; i < 3 + 1001; ++i) {
+        glm::vec3 o{normal(rng), normal(rng), normal(rng)}, d{normal(rng), normal(rng), normal(rng)};
+        float tmax = i % 3 ? inf : std::abs(normal(rng));
+        switch (i % 11) {
+            case 0: d = {0, 0, 0}; break;
+            case 1: d.x = nan; break;
+            case 2: o.y = inf; break;
+            case 3: o *= 1e30f; break;
+            case 4: d *= 1e-30f; break;
+            case 5: tmax = -1.0f; break;
+            case 6: tmax = nan; break;
+            case 7: d *= 1e30f; tmax = 1e30f; break;
+            default: break;
+        }
+        c.rays.push_back(ray(o, d, tmax));
+    }
+    for (std::uint32_t i = 0; i < 1001; ++i) c.sorted.push_back(std::uint32_t(c.first) + 1000 - i);
+    return c;
+}
+
+// The GPU's sums equal the CPU twin's up to the rounding of sin (GPU and CPU may differ in the last ulp, which can
+// move a node's width across a unit: at most one unit per node), and the order it leaves is the one the twin
+// chooses wherever the two sums are further apart than that.
+TEST(GpuOrderChoice, SumsAndChoiceMatchTheCpuTwin) {
+    gpu::test_context();
+    GpuOrderChoice choice;
+    for (const Case& c : {interleaved_clusters(), scrambled_row(), adversarial()}) {
+        for (int branching : {4, 8, 16}) {
+            for (float diagonal : {1.0f, 3.0f, 1e-3f}) {
+                const std::size_t n = c.sorted.size();
+                const std::vector<gpu::WavefrontRay> batch(c.rays.begin() + std::ptrdiff_t(c.first),
+                                                           c.rays.begin() + std::ptrdiff_t(c.first + n));
+                std::vector<std::uint32_t> local(n);
+                for (std::size_t i = 0; i < n; ++i) local[i] = c.sorted[i] - std::uint32_t(c.first);
+                const std::uint64_t queue = order_cost(order_rays(batch), {}, branching, diagonal);
+                const std::uint64_t sorted = order_cost(order_rays(batch), local, branching, diagonal);
+
+                const Buffer rays = Buffer::from(c.rays);
+                Buffer order = Buffer::from(c.sorted);
+                choice.choose({}, rays, c.first, n, order, branching, diagonal, 0);
+                const auto [gpu_queue, gpu_sorted] = choice.last_costs();
+                const std::uint64_t nodes = (n + std::size_t(branching) - 1) / std::size_t(branching);
+                const std::string what = c.name + ", B " + std::to_string(branching) + ", diagonal " +
+                                         std::to_string(diagonal);
+                EXPECT_LE(std::max(gpu_queue, queue) - std::min(gpu_queue, queue), nodes) << what;
+                EXPECT_LE(std::max(gpu_sorted, sorted) - std::min(gpu_sorted, sorted), nodes) << what;
+                std::vector<std::uint32_t> queue_order(n);
+                std::iota(queue_order.begin(), queue_order.end(), std::uint32_t(c.first));
+                const std::vector<std::uint32_t> left = order.download<std::uint32_t>(n);
+                EXPECT_EQ(left, keep_sorted_order(gpu_queue, gpu_sorted) ? c.sorted : queue_order) << what;
+                if (std::max(queue, sorted) - std::min(queue, sorted) > 2 * nodes) {
+                    EXPECT_EQ(keep_sorted_order(gpu_queue, gpu_sorted), keep_sorted_order(queue, sorted)) << what;
+                }
+            }
+        }
+    }
+}
+
+// The cases are what they claim: interleaved clusters are sorted apart, a scrambled row keeps the queue's order.
+TEST(GpuOrderChoice, KeepsATighterSortAndRefusesAWiderOne) {
+    gpu::test_context();
+    GpuOrderChoice choice;
+    for (auto [c, keep] : {std::pair{interleaved_clusters(), true}, {scrambled_row(), false}}) {
+        const Buffer rays = Buffer::from(c.rays);
+        Buffer order = Buffer::from(c.sorted);
+        choice.reset_tally();
+        choice.choose({}, rays, c.first, c.sorted.size(), order, 4, 3.0f, 1);
+        const auto [queue, sorted] = choice.last_costs();
+        EXPECT_EQ(sorted < queue, keep) << c.name << ": queue " << queue << ", sorted " << sorted;
+        EXPECT_EQ(choice.tally()[1].batches, keep ? 1u : 0u) << c.name;
+        EXPECT_EQ(choice.tally()[1].rays, keep ? c.sorted.size() : 0u) << c.name;
+        EXPECT_EQ(choice.tally()[0].batches, 0u) << c.name << ": the trace batches' tally is apart";
+    }
+}
+
+// Equal sums, and a sort tighter by 1/32 or less, keep the queue's order (a sort that gains that little is not worth
+// its passes); huge sums compare exactly.
+TEST(OrderChoice, ATieOrASmallGainKeepsTheQueuesOrder) {
+    EXPECT_FALSE(keep_sorted_order(3200, 3200));
+    EXPECT_FALSE(keep_sorted_order(3200, 3100));   // exactly 1/32 tighter
+    EXPECT_TRUE(keep_sorted_order(3200, 3099));
+    EXPECT_FALSE(keep_sorted_order(3099, 3200));
+    EXPECT_FALSE(keep_sorted_order(0, 0));
+    const std::uint64_t big = std::uint64_t(1) << 45;
+    EXPECT_FALSE(keep_sorted_order(big * 32, big * 31));
+    EXPECT_TRUE(keep_sorted_order(big * 32, big * 31 - 1));
+}
+
+// Widths: empty nodes 0, every direction and NaN the widest, a ray's length cut to the diagonal.
+TEST(OrderChoice, WidthsOfEmptyAllDirectionAndLongNodes) {
+    RhNode empty;
+    EXPECT_EQ(order_fixed_width(empty, 1.0f, 1.0f), 0u);
+    RhNode all;
+    all.sphere = {0, 0, 0, 0};
+    all.cone = {1, 0, 0, 3.14159274f};
+    EXPECT_EQ(order_fixed_width(all, 1.0f, 1.0f), std::uint32_t(kOrderMaxWidth * kOrderWidthUnits));
+    RhNode nan_radius;
+    nan_radius.sphere = {0, 0, 0, 0};
+    nan_radius.cone = {1, 0, 0, std::numeric_limits<float>::quiet_NaN()};
+    EXPECT_EQ(order_fixed_width(nan_radius, 1.0f, 1.0f), std::uint32_t(kOrderMaxWidth * kOrderWidthUnits));
+    RhNode narrow;
+    narrow.sphere = {0, 0, 0, 0.5f};
+    narrow.cone = {1, 0, 0, 0.0f};
+    EXPECT_EQ(order_fixed_width(narrow, INFINITY, 2.0f), 1024u);   // 0.5 of a diagonal of 2: a quarter
+    narrow.cone.w = 0.1f;
+    const float reach = kOrderReach * 2.0f;
+    EXPECT_EQ(order_fixed_width(narrow, 1e30f, 2.0f), order_fixed_width(narrow, reach, 2.0f)) << "cut to the reach";
+    EXPECT_LT(order_fixed_width(narrow, 0.5f * reach, 2.0f), order_fixed_width(narrow, reach, 2.0f))
+        << "a short ray is narrower";
+}
+
+}  // namespace
+}  // namespace rt

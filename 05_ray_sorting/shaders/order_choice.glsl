@@ -1,0 +1,33 @@
+// --sort auto: the batch's cost in queue order and in sorted order (order_cost.comp), and the choice between them
+// (order_choice.comp). C++ twin: order_choice.h (the same width and rounding; a test checks both agree).
+
+// Bindings: stage 05's own buffers, from the traversal's first point (stage 04 binds its own before each pass).
+#define OC_BINDING_ORDER (WF_BINDING_TRAVERSAL_FIRST + 0)   // uint[count]: queue index of the i-th sorted ray
+#define OC_BINDING_COST (WF_BINDING_TRAVERSAL_FIRST + 1)    // uint[4]: 64-bit width sums, queue then sorted
+#define OC_BINDING_TALLY (WF_BINDING_TRAVERSAL_FIRST + 2)   // uint[8]: per batch kind (trace, shadow) 64-bit counts
+                                                            // of the batches and rays that kept the sorted order
+
+// Width units per diagonal: a level-1 node's width in 1/4096 of the scene's diagonal, rounded down, at most
+// 4 diagonals (a wider node reaches everything anyway), so a sum of up to 2^20 nodes stays far inside 64 bits.
+#define OC_UNITS 4096.0
+#define OC_MAX_WIDTH 4.0
+// The distance at which the width is taken, as a part of the diagonal: where a level-1 node meets the object nodes
+// it is split against, which the object tree keeps near (05's README, "Choosing per batch": 1, 1/4, 1/8 and 1/32
+// measured on the benchmark scenes; 1/8 never lost).
+#define OC_REACH 0.125
+// The sorted order is kept when its sum is below (1 - 1/32) of the queue's: the widths are a proxy, and a batch whose
+// sort gains less (builtin:diffuse's shadow rays: 0.9992 of the queue's width, and 1.8% more leaf pairs sorted) is
+// not worth its passes.
+#define OC_MARGIN_DENOMINATOR 32.0lf
+
+// radius + L sin(spread) (rh_split_rays' width), L = min(longest ray, OC_REACH diagonal); an empty node is 0 wide,
+// a node of every direction (or a NaN) the widest.
+uint oc_fixed_width(RhNode node, float longest, float diagonal) {
+    if (!(node.sphere.w >= 0.0)) return 0u;
+    if (node.cone.w >= RH_ALL_DIRECTIONS) return uint(OC_MAX_WIDTH * OC_UNITS);
+    const float reach = rt_isfinite(longest) ? min(longest, OC_REACH * diagonal) : OC_REACH * diagonal;
+    precise float width = node.sphere.w + reach * sin(min(node.cone.w, 1.57079637));
+    precise float units = width / diagonal * OC_UNITS;
+    if (!(units < OC_MAX_WIDTH * OC_UNITS)) return uint(OC_MAX_WIDTH * OC_UNITS);
+    return uint(units);
+}
