@@ -37,11 +37,23 @@ std::uint64_t order_cost(const std::vector<OrderRay>& rays, const std::vector<st
     return sum;
 }
 
+int choose_order(std::uint64_t queue_cost, std::uint64_t sorted_cost, std::optional<std::uint64_t> fine_cost) {
+    int best = 1;
+    std::uint64_t width = sorted_cost;
+    if (fine_cost && *fine_cost < width) {
+        best = 2;
+        width = *fine_cost;
+    }
+    return keep_sorted_order(queue_cost, width) ? best : 0;
+}
+
 namespace {
-// shaders/order_choice.glsl: OC_BINDING_ORDER, _COST, _TALLY (the stage's own points; 04 rebinds its own per pass).
+// shaders/order_choice.glsl: OC_BINDING_* (the stage's own points; 04 rebinds its own before each of its passes).
 constexpr unsigned kBindingOrder = gpu::kBindingWavefrontTraversalFirst + 0;
 constexpr unsigned kBindingCost = gpu::kBindingWavefrontTraversalFirst + 1;
 constexpr unsigned kBindingTally = gpu::kBindingWavefrontTraversalFirst + 2;
+constexpr unsigned kBindingOrderFine = gpu::kBindingWavefrontTraversalFirst + 3;
+constexpr std::size_t kTallySize = 6;   // OC_TALLY_SIZE
 
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
@@ -58,47 +70,60 @@ void GpuOrderChoice::compile(const gpu::ShaderDefines& defines) {
     if (!tally_) reset_tally();
 }
 
-void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first,
-                            std::size_t count, gpu::Buffer& order, int branching, float diagonal, int kind) {
-    compile(defines);
-    if (count == 0) return;
-    const std::uint32_t zero[4] = {};
-    if (!costs_) costs_ = gpu::Buffer(sizeof zero);
-    costs_.upload(zero, sizeof zero);
-    rays.bind(gpu::kBindingWavefrontRaysIn);
-    order.bind_range(kBindingOrder, 0, count * 4);
-    costs_.bind(kBindingCost);
-    tally_.bind(kBindingTally);
-
-    const std::size_t nodes = (count + std::size_t(branching) - 1) / std::size_t(branching);
+void GpuOrderChoice::sum(const gpu::Buffer* order, unsigned slot, std::size_t first, std::size_t count,
+                         int branching, float diagonal) const {
+    if (order) order->bind_range(kBindingOrder, 0, count * 4);
     cost_.set("oc_count", unsigned(count));
     cost_.set("oc_first", unsigned(first));
     cost_.set("oc_branching", unsigned(branching));
     cost_.set("oc_diagonal", diagonal);
-    cost_.dispatch_threads(nodes);   // one thread per level-1 node; each work group adds its sums once
+    cost_.set("oc_sorted", order ? 1u : 0u);
+    cost_.set("oc_slot", slot);
+    cost_.dispatch_threads((count + std::size_t(branching) - 1) / std::size_t(branching));   // a thread per node
+}
+
+void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first,
+                            std::size_t count, gpu::Buffer& order, const gpu::Buffer* fine_order, int branching,
+                            float diagonal, int kind) {
+    compile(defines);
+    if (count == 0) return;
+    const std::uint32_t zero[6] = {};
+    if (!costs_) costs_ = gpu::Buffer(sizeof zero);
+    costs_.upload(zero, sizeof zero);
+    rays.bind(gpu::kBindingWavefrontRaysIn);
+    costs_.bind(kBindingCost);
+    order.bind_range(kBindingOrder, 0, count * 4);   // also read (not used) by the queue's sum
+    sum(nullptr, 0, first, count, branching, diagonal);
+    sum(&order, 1, first, count, branching, diagonal);
+    if (fine_order) sum(fine_order, 2, first, count, branching, diagonal);
     barrier();
+    order.bind_range(kBindingOrder, 0, count * 4);
+    (fine_order ? *fine_order : order).bind_range(kBindingOrderFine, 0, count * 4);
+    tally_.bind(kBindingTally);
     choice_.set("oc_count", unsigned(count));
     choice_.set("oc_first", unsigned(first));
     choice_.set("oc_kind", unsigned(kind));
+    choice_.set("oc_candidates", fine_order ? 2u : 1u);
     choice_.dispatch_threads(count);
     barrier();
     gpu::check_gl("05_ray_sorting: order choice");
 }
 
-std::array<std::uint64_t, 2> GpuOrderChoice::last_costs() const {
-    std::uint32_t v[4] = {};
+std::array<std::uint64_t, 3> GpuOrderChoice::last_costs() const {
+    std::uint32_t v[6] = {};
     if (costs_) costs_.download(v, sizeof v);
-    return {u64(v), u64(v + 2)};
+    return {u64(v), u64(v + 2), u64(v + 4)};
 }
 
 std::array<GpuOrderChoice::Tally, 2> GpuOrderChoice::tally() const {
-    std::uint32_t v[8] = {};
+    std::uint32_t v[2 * kTallySize] = {};
     if (tally_) tally_.download(v, sizeof v);
-    return {Tally{u64(v), u64(v + 2)}, Tally{u64(v + 4), u64(v + 6)}};
+    return {Tally{u64(v), u64(v + 2), u64(v + 4)}, Tally{u64(v + kTallySize), u64(v + kTallySize + 2),
+                                                        u64(v + kTallySize + 4)}};
 }
 
 void GpuOrderChoice::reset_tally() {
-    const std::uint32_t zero[8] = {};
+    const std::uint32_t zero[2 * kTallySize] = {};
     if (!tally_) tally_ = gpu::Buffer(sizeof zero);
     tally_.upload(zero, sizeof zero);
 }

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,25 +50,35 @@ inline bool keep_sorted_order(std::uint64_t queue_cost, std::uint64_t sorted_cos
     return double(sorted_cost) * kOrderMarginDenominator < double(queue_cost) * (kOrderMarginDenominator - 1.0);
 }
 
-// The choice on the GPU: shaders/order_cost.comp sums both widths, shaders/order_choice.comp overwrites `order` with
-// queue order (first + i) unless the sorted one is tighter. No read-back: the counts reach the CPU with the stats.
+// The order a batch is traced in: 0 = the queue's, 1 = the sorted one, 2 = the fine one (reflection and refraction
+// batches are also sorted by a finer direction cell, --fine-direction-bits): the tighter sort (the coarse one on a
+// tie) if keep_sorted_order says so against the queue.
+int choose_order(std::uint64_t queue_cost, std::uint64_t sorted_cost, std::optional<std::uint64_t> fine_cost = {});
+
+// The choice on the GPU: shaders/order_cost.comp sums the widths of each order, shaders/order_choice.comp writes the
+// chosen one into `order` (queue order first + i, the fine order, or `order` as it is). No read-back: the counts
+// reach the CPU with the stats.
 class GpuOrderChoice {
 public:
-    // rays[first, first + count) of the batch, `order` its sorted order (RaySorter::sort); kind: 0 trace, 1 shadow.
-    // `defines`: the wavefront's (the passes read its rays through wavefront.glsl).
+    // rays[first, first + count) of the batch, `order` its sorted order (RaySorter::sort) and `fine_order` (or null)
+    // its order by the finer direction cell; kind: 0 trace, 1 shadow. `defines`: the wavefront's (the passes read
+    // its rays through wavefront.glsl).
     void choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first, std::size_t count,
-                gpu::Buffer& order, int branching, float diagonal, int kind);
-    // The last batch's sums, queue then sorted (a read-back: for the tests).
-    std::array<std::uint64_t, 2> last_costs() const;
-    // Per batch kind since reset_tally(): batches and rays that kept the sorted order (a read-back).
+                gpu::Buffer& order, const gpu::Buffer* fine_order, int branching, float diagonal, int kind);
+    // The last batch's sums: queue, sorted, fine (0 without one). A read-back: for the tests.
+    std::array<std::uint64_t, 3> last_costs() const;
+    // Per batch kind since reset_tally(): batches and rays that kept a sorted order, and batches that kept the fine
+    // one (a read-back).
     struct Tally {
-        std::uint64_t batches = 0, rays = 0;
+        std::uint64_t batches = 0, rays = 0, fine_batches = 0;
     };
     std::array<Tally, 2> tally() const;
     void reset_tally();
 
 private:
     void compile(const gpu::ShaderDefines& defines);
+    void sum(const gpu::Buffer* order, unsigned slot, std::size_t first, std::size_t count, int branching,
+             float diagonal) const;
     std::string key_;
     gpu::Program cost_, choice_;
     gpu::Buffer costs_, tally_;

@@ -106,8 +106,8 @@ TEST(GpuOrderChoice, SumsAndChoiceMatchTheCpuTwin) {
 
                 const Buffer rays = Buffer::from(c.rays);
                 Buffer order = Buffer::from(c.sorted);
-                choice.choose({}, rays, c.first, n, order, branching, diagonal, 0);
-                const auto [gpu_queue, gpu_sorted] = choice.last_costs();
+                choice.choose({}, rays, c.first, n, order, nullptr, branching, diagonal, 0);
+                const auto [gpu_queue, gpu_sorted, unused] = choice.last_costs();
                 const std::uint64_t nodes = (n + std::size_t(branching) - 1) / std::size_t(branching);
                 const std::string what = c.name + ", B " + std::to_string(branching) + ", diagonal " +
                                          std::to_string(diagonal);
@@ -133,13 +133,51 @@ TEST(GpuOrderChoice, KeepsATighterSortAndRefusesAWiderOne) {
         const Buffer rays = Buffer::from(c.rays);
         Buffer order = Buffer::from(c.sorted);
         choice.reset_tally();
-        choice.choose({}, rays, c.first, c.sorted.size(), order, 4, 3.0f, 1);
-        const auto [queue, sorted] = choice.last_costs();
+        choice.choose({}, rays, c.first, c.sorted.size(), order, nullptr, 4, 3.0f, 1);
+        const auto [queue, sorted, unused] = choice.last_costs();
         EXPECT_EQ(sorted < queue, keep) << c.name << ": queue " << queue << ", sorted " << sorted;
         EXPECT_EQ(choice.tally()[1].batches, keep ? 1u : 0u) << c.name;
         EXPECT_EQ(choice.tally()[1].rays, keep ? c.sorted.size() : 0u) << c.name;
         EXPECT_EQ(choice.tally()[0].batches, 0u) << c.name << ": the trace batches' tally is apart";
     }
+}
+
+// Two sorted orders (a reflection batch's coarse and fine direction cells): the tightest wins if it beats the queue by
+// the margin, whichever it is; the order left in `order` is that one, and the tally says which.
+TEST(GpuOrderChoice, OfTwoSortedOrdersTheTighterIsKept) {
+    gpu::test_context();
+    GpuOrderChoice choice;
+    const Case clusters = interleaved_clusters();
+    const std::size_t n = clusters.sorted.size();
+    std::vector<std::uint32_t> queue_order(n), reversed(clusters.sorted.rbegin(), clusters.sorted.rend());
+    std::iota(queue_order.begin(), queue_order.end(), std::uint32_t(clusters.first));
+    std::vector<std::uint32_t> scrambled = queue_order;
+    std::shuffle(scrambled.begin(), scrambled.end(), std::mt19937(5));
+    const Buffer rays = Buffer::from(clusters.rays);
+    struct Try {
+        std::vector<std::uint32_t> coarse, fine;
+        int expected;   // -1: either sorted order (both tight)
+    };
+    for (const Try& t : {Try{scrambled, clusters.sorted, 2}, Try{clusters.sorted, scrambled, 1},
+                         Try{clusters.sorted, reversed, -1}}) {
+        Buffer order = Buffer::from(t.coarse);
+        const Buffer fine = Buffer::from(t.fine);
+        choice.reset_tally();
+        choice.choose({}, rays, clusters.first, n, order, &fine, 4, 3.0f, 0);
+        const auto [queue, coarse, fine_cost] = choice.last_costs();
+        const int expected = choose_order(queue, coarse, fine_cost);
+        if (t.expected >= 0) {
+            EXPECT_EQ(expected, t.expected);
+        }
+        EXPECT_NE(expected, 0) << "a clustered order beats the interleaved queue";
+        EXPECT_EQ(order.download<std::uint32_t>(n), expected == 0 ? queue_order : expected == 1 ? t.coarse : t.fine);
+        EXPECT_EQ(choice.tally()[0].fine_batches, expected == 2 ? 1u : 0u);
+        EXPECT_EQ(choice.tally()[0].batches, expected == 0 ? 0u : 1u);
+    }
+    EXPECT_EQ(choose_order(100, 50, 40), 2);
+    EXPECT_EQ(choose_order(100, 40, 40), 1) << "a tie goes to the coarse key";
+    EXPECT_EQ(choose_order(100, 99, 98), 0) << "neither beats the queue by the margin";
+    EXPECT_EQ(choose_order(100, 50), 1);
 }
 
 // Equal sums, and a sort tighter by 1/32 or less, keep the queue's order (a sort that gains that little is not worth

@@ -63,10 +63,20 @@ void RaySortingRenderer::add_options(CLI::App& app) {
                        "default gives way to half of a --key-bits below it)")
             ->capture_default_str()
             ->check(whole_number_in(0, 32));
-    app.parse_complete_callback([this, shadow_bits] {
-        for (auto [name, bits] : {std::pair{"--direction-bits", sort_options.direction_bits},
-                                  {"--shadow-direction-bits", sort_options.shadow_direction_bits}})
-            if (bits > sort_options.key_bits && (name[2] == 'd' || shadow_bits->count() > 0))
+    CLI::Option* fine_bits =
+        app.add_option("--fine-direction-bits", sort_options.fine_direction_bits,
+                       "With --sort auto, reflection and refraction batches are also sorted with this many bits of "
+                       "a finer direction cell, and the tighter order is kept (0: one key; the default gives way to "
+                       "none under a shorter --key-bits)")
+            ->capture_default_str()
+            ->check(whole_number_in(0, 32));
+    app.parse_complete_callback([this, shadow_bits, fine_bits] {
+        for (auto [name, bits, given] : {std::tuple{"--direction-bits", sort_options.direction_bits, true},
+                                         {"--shadow-direction-bits", sort_options.shadow_direction_bits,
+                                          shadow_bits->count() > 0},
+                                         {"--fine-direction-bits", sort_options.fine_direction_bits,
+                                          fine_bits->count() > 0}})
+            if (bits > sort_options.key_bits && given)
                 throw CLI::ValidationError(name, std::to_string(bits) + " exceeds --key-bits " +
                                                      std::to_string(sort_options.key_bits));
     });
@@ -75,6 +85,13 @@ void RaySortingRenderer::add_options(CLI::App& app) {
 unsigned RaySortingRenderer::shadow_direction_bits() const {
     const unsigned k = sort_options.key_bits, d = sort_options.shadow_direction_bits;
     return d > k ? k / 2 : d;   // the default 12 under a short key: half of it, the origin still first
+}
+
+unsigned RaySortingRenderer::fine_direction_bits() const {
+    const unsigned f = sort_options.fine_direction_bits;
+    if (sort_options.mode != SortMode::automatic || f > sort_options.key_bits || f == sort_options.direction_bits)
+        return 0;
+    return f;
 }
 
 void RaySortingRenderer::compile() {
@@ -97,6 +114,8 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
                                   lights, KeyOrder::direction_first);
     layouts_[1] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, shadow_direction_bits(),
                                   lights, KeyOrder::origin_first);
+    layouts_[2] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, fine_direction_bits(),
+                                  lights, KeyOrder::direction_first);
 }
 
 void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
@@ -111,9 +130,17 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
         auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
         sorter_->layout = layouts_[shadow ? 1 : 0];   // ray_keys.h: which order suits which rays
         sorter_->sort(in.rays, in.first, n, order_);
-        if (sort_options.mode == SortMode::automatic)
-            choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, hierarchy_options.branching, diagonal_,
-                           shadow ? 1 : 0);
+        stats.chunks += sorter_->chunk_count();
+        if (sort_options.mode == SortMode::automatic) {
+            // Reflection and refraction rays: a second order by the finer direction cell, for the choice.
+            const bool fine = !shadow && fine_direction_bits() > 0;
+            if (fine) {
+                sorter_->layout = layouts_[2];
+                sorter_->sort(in.rays, in.first, n, fine_order_);
+            }
+            choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, fine ? &fine_order_ : nullptr,
+                           hierarchy_options.branching, diagonal_, shadow ? 1 : 0);
+        }
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
         gather_.set("rs_count", unsigned(n));
         in.rays.bind_range(kStageBinding[0], 0, (in.first + n) * sizeof(gpu::WavefrontRay));
@@ -124,7 +151,6 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     }
     stats.batches += 1;
     stats.rays += n;
-    stats.chunks += sorter_->chunk_count();
 
     sorted_results_.reserve(n * stride * 4);
     RayHierarchyRenderer::trace_batch({sorted_rays_, 0, n, sorted_results_, in.tests_per_pixel, in.wavefront}, shadow);
@@ -160,10 +186,12 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
         nlohmann::json key = {{"key_bits", sort_options.key_bits},
                               {"direction_bits", sort_options.direction_bits},
                               {"shadow_direction_bits", shadow_direction_bits()},
+                              {"fine_direction_bits", fine_direction_bits()},
                               {"groups", layouts_[0].group_count}};
-        for (int k = 0; k < 2; ++k) {
+        for (int k = 0; k < 3; ++k) {
+            if (k == 2 && fine_direction_bits() == 0) continue;
             const RayKeyLayout& L = layouts_[std::size_t(k)];
-            key[kBatchKind[k]] = {
+            key[k == 2 ? "trace_fine" : kBatchKind[k]] = {
                 {"order", key_order_name(L.direction_major ? KeyOrder::direction_first : KeyOrder::origin_first)},
                 {"cell_size", L.cell_size},
                 {"origin_bits", {L.origin_bits.x, L.origin_bits.y, L.origin_bits.z}},
@@ -175,8 +203,8 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
         rs["key"] = key;
         const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
         nlohmann::json batches = nlohmann::json::object();
-        // Batches (and their rays) whose sorted order was kept: all of them with --sort on; with auto the GPU's
-        // choice, read here once per frame.
+        // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
+        // them with --sort on (one key); with auto the GPU's choice, read here once per frame.
         std::array<GpuOrderChoice::Tally, 2> kept{};
         if (sort_options.mode == SortMode::automatic) kept = choice_.tally();
         for (int k = 0; k < 2; ++k) {
@@ -190,6 +218,7 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
                 {"rays_per_chunk", s.chunks ? double(s.rays) / double(s.chunks) : 0.0},
                 {"sorted_batches", kept[std::size_t(k)].batches},
                 {"sorted_rays", kept[std::size_t(k)].rays},
+                {"fine_batches", kept[std::size_t(k)].fine_batches},
                 {"sort_ms", pass_ms.contains(kSortPhase[k]) ? double(pass_ms[kSortPhase[k]]) : 0.0}};
         }
         rs["batches"] = batches;

@@ -31,6 +31,8 @@ struct SortOptions {
     unsigned key_bits = 30;              // --key-bits: origin + direction bits of a key
     unsigned direction_bits = 4;         // --direction-bits: the coarse direction cell of reflection/refraction keys
     unsigned shadow_direction_bits = 12; // --shadow-direction-bits: the direction cell below a shadow key's origin
+    unsigned fine_direction_bits = 8;    // --fine-direction-bits: --sort auto's second reflection/refraction key
+                                         // (0 or = direction_bits: none)
 };
 
 class RaySortingRenderer : public RayHierarchyRenderer {
@@ -53,13 +55,18 @@ private:
     };
     float diagonal_ = 1.0f;   // the scene box's diagonal (the choice's unit of width)
     void compile();
-    unsigned shadow_direction_bits() const;   // sort_options' value; above key_bits (the default, a short key) half of it
+    // sort_options' value; above key_bits (the default, a short key) half of it.
+    unsigned shadow_direction_bits() const;
+    // --sort auto's second key for reflection and refraction batches: its direction bits, 0 for none (not auto, equal
+    // to --direction-bits, or the default above a short --key-bits).
+    unsigned fine_direction_bits() const;
 
     std::unique_ptr<RaySorter> sorter_;   // created with the first frame (needs the context)
     GpuOrderChoice choice_;
-    std::array<RayKeyLayout, 2> layouts_{};   // per batch kind, set per frame (the scene box, the lights)
+    // Per batch kind (trace, shadow) and the trace batches' fine key, set per frame (the scene box, the lights).
+    std::array<RayKeyLayout, 3> layouts_{};
     gpu::Program gather_, scatter_;
-    gpu::Buffer order_, sorted_rays_, sorted_results_;
+    gpu::Buffer order_, fine_order_, sorted_rays_, sorted_results_;
     std::array<BatchStats, 2> batch_stats_{};
 };
 

@@ -1,11 +1,14 @@
-// --sort auto: the batch's cost in queue order and in sorted order (order_cost.comp), and the choice between them
-// (order_choice.comp). C++ twin: order_choice.h (the same width and rounding; a test checks both agree).
+// --sort auto: the batch's cost in queue order and in each sorted order (order_cost.comp), and the choice between
+// them (order_choice.comp). C++ twin: order_choice.h (the same width and rounding; a test checks both agree).
 
 // Bindings: stage 05's own buffers, from the traversal's first point (stage 04 binds its own before each pass).
-#define OC_BINDING_ORDER (WF_BINDING_TRAVERSAL_FIRST + 0)   // uint[count]: queue index of the i-th sorted ray
-#define OC_BINDING_COST (WF_BINDING_TRAVERSAL_FIRST + 1)    // uint[4]: 64-bit width sums, queue then sorted
-#define OC_BINDING_TALLY (WF_BINDING_TRAVERSAL_FIRST + 2)   // uint[8]: per batch kind (trace, shadow) 64-bit counts
-                                                            // of the batches and rays that kept the sorted order
+#define OC_BINDING_ORDER (WF_BINDING_TRAVERSAL_FIRST + 0)        // uint[count]: queue index of the i-th sorted ray
+#define OC_BINDING_COST (WF_BINDING_TRAVERSAL_FIRST + 1)         // uint[6]: 64-bit width sums: queue, sorted, fine
+#define OC_BINDING_TALLY (WF_BINDING_TRAVERSAL_FIRST + 2)        // uint[2 OC_TALLY_SIZE]: per batch kind (trace,
+                                                                 // shadow) 64-bit counts: batches and rays that kept
+                                                                 // a sort, batches that kept the fine one
+#define OC_BINDING_ORDER_FINE (WF_BINDING_TRAVERSAL_FIRST + 3)   // uint[count]: the order by the fine direction cell
+#define OC_TALLY_SIZE 6u
 
 // Width units per diagonal: a level-1 node's width in 1/4096 of the scene's diagonal, rounded down, at most
 // 4 diagonals (a wider node reaches everything anyway), so a sum of up to 2^20 nodes stays far inside 64 bits.

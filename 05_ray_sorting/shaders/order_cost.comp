@@ -1,12 +1,12 @@
 #version 450 core
-// --sort auto (sorting_renderer.h): how tight stage 04's lowest nodes would be over the batch in queue order and in
-// sorted order. Thread g builds node g of level 1 both ways, exactly as rh_build.comp does (rh_leaf, rh_union over
-// rays [gB, gB + B)), and measures its beam width where it meets the scene: radius + L sin(spread), the width
-// rh_split_rays compares with an object node, at L = the longest ray of the node (tmax |d|) cut to an eighth of the
-// scene's diagonal (order_choice.glsl: OC_REACH). Level 1 carries the traversal's cost: its width decides how many
-// (ray, triangle) pairs reach the leaves.
-// Widths are summed in fixed point (1/4096 of the diagonal per unit) as 64-bit counters, first per work group in
-// shared memory, then one atomic add per group, so the sums (and the choice) do not depend on the order threads run.
+// --sort auto (sorting_renderer.h): how tight stage 04's lowest nodes would be over the batch in one order (the
+// queue's, or a sorted one). Thread g builds node g of level 1 exactly as rh_build.comp does (rh_leaf, rh_union over
+// the B rays the order puts at [gB, gB + B)) and measures its beam width where it meets the scene: radius
+// + L sin(spread), the width rh_split_rays compares with an object node, at L = the longest ray of the node (tmax |d|)
+// cut to an eighth of the scene's diagonal (order_choice.glsl: OC_REACH). Level 1 carries the traversal's cost: its
+// width decides how many (ray, triangle) pairs reach the leaves.
+// Widths are summed in fixed point (1/4096 of the diagonal per unit) as a 64-bit counter, first per work group in
+// shared memory, then one atomic add per group, so the sum (and the choice) does not depend on the order threads run.
 #include "04_ray_hierarchy/shaders/rh_common.glsl"
 #include "order_choice.glsl"
 
@@ -19,17 +19,19 @@ uniform uint oc_count;       // rays of the batch
 uniform uint oc_first;       // the batch's first ray in wf_rays_in (queue order)
 uniform uint oc_branching;   // B: rays per level-1 node
 uniform float oc_diagonal;   // the scene box's diagonal (> 0)
+uniform uint oc_sorted;      // 0: queue order (oc_order unread), 1: the order in oc_order
+uniform uint oc_slot;        // the sum goes to oc_cost[2 slot], [2 slot + 1] (order_choice.glsl)
 
-shared uint oc_sum[2][2][64];   // [order][lo, hi][thread]
+shared uint oc_lo[64], oc_hi[64];
 
-// The fixed-point width of level-1 node g: rays [gB, gB + B) in queue order, or those the sorted order puts there.
-uint oc_width(uint g, bool sorted) {
+// The fixed-point width of level-1 node g.
+uint oc_width(uint g) {
     const uint first = g * oc_branching;
     const uint count = min(oc_branching, oc_count - first);
     RhNode kids[16];
     float longest = 0.0;
     for (uint k = 0u; k < count; ++k) {
-        const uint i = sorted ? oc_order[first + k] : oc_first + first + k;
+        const uint i = oc_sorted == 1u ? oc_order[first + k] : oc_first + first + k;
         const WavefrontRay r = wf_rays_in[i];
         kids[k] = rh_leaf(r.origin, r.direction);
         longest = max(longest, r.tmax * length(r.direction));
@@ -39,26 +41,21 @@ uint oc_width(uint g, bool sorted) {
 
 void main() {
     const uint g = rt_global_index(), t = gl_LocalInvocationIndex;
-    const uint groups = (oc_count + oc_branching - 1u) / oc_branching;
-    for (uint o = 0u; o < 2u; ++o) {
-        oc_sum[o][0][t] = g < groups ? oc_width(g, o == 1u) : 0u;
-        oc_sum[o][1][t] = 0u;
-    }
+    const uint nodes = (oc_count + oc_branching - 1u) / oc_branching;
+    oc_lo[t] = g < nodes ? oc_width(g) : 0u;
+    oc_hi[t] = 0u;
     barrier();
     // Tree reduction of 64-bit sums held as (lo, hi) pairs.
     for (uint stride = 32u; stride > 0u; stride >>= 1u) {
-        if (t < stride)
-            for (uint o = 0u; o < 2u; ++o) {
-                const uint lo = oc_sum[o][0][t], add = oc_sum[o][0][t + stride];
-                oc_sum[o][0][t] = lo + add;
-                oc_sum[o][1][t] += oc_sum[o][1][t + stride] + (lo + add < lo ? 1u : 0u);
-            }
+        if (t < stride) {
+            const uint lo = oc_lo[t], add = oc_lo[t + stride];
+            oc_lo[t] = lo + add;
+            oc_hi[t] += oc_hi[t + stride] + (lo + add < lo ? 1u : 0u);
+        }
         barrier();
     }
-    if (t == 0u)
-        for (uint o = 0u; o < 2u; ++o) {
-            const uint lo = oc_sum[o][0][0], hi = oc_sum[o][1][0];
-            const uint old = atomicAdd(oc_cost[2u * o], lo);
-            atomicAdd(oc_cost[2u * o + 1u], hi + (old + lo < old ? 1u : 0u));
-        }
+    if (t == 0u) {
+        const uint old = atomicAdd(oc_cost[2u * oc_slot], oc_lo[0]);
+        atomicAdd(oc_cost[2u * oc_slot + 1u], oc_hi[0] + (old + oc_lo[0] < old ? 1u : 0u));
+    }
 }
