@@ -18,6 +18,11 @@ constexpr int kMaxRayLevels = 32;                             // rh_cull.comp's 
 constexpr std::uint32_t kInfoWords = 224, kInfoExact = 10, kInfoObjectIn = 12, kInfoObjectOut = 14,
                         kInfoLevelIn = 16, kInfoLevelOut = 80, kInfoLeafPairs = 144, kInfoStepCount = 160, kInfoGroupFirst = 8;
 constexpr int kMaxSteps = 63;   // rh_info.glsl: RH_INFO_STEP_COUNT slots
+// rh_tally.comp: per ray kind, the 64-bit sums of rh_info's words kInfoExact .. kInfoLeafPairs + 1, then the sphere
+// tests and the fold tests.
+constexpr std::uint32_t kTallyWords = 144, kTallyGroupPairs = 68, kTallySphere = 136, kTallyFold = 138;
+// rh_groups.comp's list [count, (first ray, kind) per group]: the groups read back at once (more take a second read).
+constexpr std::uint32_t kGroupsAtOnce = 64;
 
 void barrier() {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -44,15 +49,56 @@ std::uint64_t HierarchyKindStats::node_tests() const {
 
 std::vector<std::string> GpuRayHierarchy::program_names() {
     std::vector<std::string> names;
-    for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_build.comp", "rh_cull.comp",
-                          "rh_expand.comp", "rh_leaf.comp", "rh_fold.comp", "rh_args.comp"})
+    for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_groups.comp", "rh_build.comp",
+                          "rh_cull.comp", "rh_expand.comp", "rh_leaf.comp", "rh_fold.comp", "rh_args.comp",
+                          "rh_tally.comp"})
         names.push_back(std::string("04_ray_hierarchy/shaders/") + p);
     return names;
 }
 
 GpuRayHierarchy::GpuRayHierarchy()
     : info_(kInfoWords * sizeof(std::uint32_t)), group_count_(sizeof(std::uint32_t)),
-      args_((kMaxSteps + 1) * 3 * sizeof(std::uint32_t)) {}
+      tally_(std::size_t(kRayKinds) * kTallyWords * sizeof(std::uint32_t)),
+      args_((kMaxSteps + 1) * 3 * sizeof(std::uint32_t)) {
+    reset_stats();
+}
+
+void GpuRayHierarchy::reset_stats() {
+    cpu_stats_ = stats_ = {};
+    tally_.clear_u32(0);
+    tally_read_ = true;
+    fold_rounds = prunes = chunks = windows = syncs = 0;
+}
+
+// The CPU's own counts plus the GPU's sums (one read-back, only when a trace ran since the last one).
+const std::array<HierarchyKindStats, kRayKinds>& GpuRayHierarchy::stats() {
+    if (tally_read_) return stats_;
+    std::vector<std::uint32_t> t = tally_.download<std::uint32_t>(std::size_t(kRayKinds) * kTallyWords);
+    ++syncs;
+    tally_read_ = true;
+    stats_ = cpu_stats_;
+    for (int k = 0; k < kRayKinds; ++k) {
+        const std::uint32_t* w = t.data() + std::size_t(k) * kTallyWords;
+        auto sum = [&](std::uint32_t info_word) { return word64(w, info_word - kInfoExact); };
+        HierarchyKindStats& ks = stats_[std::size_t(k)];
+        for (std::size_t l = 0; l < ks.levels.size(); ++l) {
+            ks.levels[l].pairs_in += sum(kInfoLevelIn + 2 * std::uint32_t(l));
+            ks.levels[l].pairs_out += sum(kInfoLevelOut + 2 * std::uint32_t(l));
+        }
+        const std::uint64_t exact = sum(kInfoExact), leaf_pairs = sum(kInfoLeafPairs);
+        ks.leaf_pairs += leaf_pairs;
+        ks.sphere_tests += word64(w, kTallySphere);
+        if (!ks.levels.empty()) {
+            ks.levels[0].pairs_in += leaf_pairs;
+            ks.levels[0].pairs_out += exact;
+        }
+        ks.object_pairs_in += sum(kInfoObjectIn);
+        ks.object_pairs_out += sum(kInfoObjectOut);
+        ks.local_tests += exact;
+        ks.fold_tests += word64(w, kTallyFold);
+    }
+    return stats_;
+}
 
 void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     std::string key;
@@ -63,6 +109,7 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     tree_ = Program::compute("04_ray_hierarchy/shaders/ot_build.comp", d);
     build_ = Program::compute("04_ray_hierarchy/shaders/rh_build.comp", d);
     heads_ = Program::compute("04_ray_hierarchy/shaders/rh_heads.comp", d);
+    groups_ = Program::compute("04_ray_hierarchy/shaders/rh_groups.comp", d);
     cull_ = Program::compute("04_ray_hierarchy/shaders/rh_cull.comp", d);
     expand_ = Program::compute("04_ray_hierarchy/shaders/rh_expand.comp", d);
     leaf_closest_ = Program::compute("04_ray_hierarchy/shaders/rh_leaf.comp", d);
@@ -72,6 +119,7 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     leaf_shadow_ = Program::compute("04_ray_hierarchy/shaders/rh_leaf.comp", shadow);
     fold_ = Program::compute("04_ray_hierarchy/shaders/rh_fold.comp", d);
     args_pass_ = Program::compute("04_ray_hierarchy/shaders/rh_args.comp", d);
+    tally_pass_ = Program::compute("04_ray_hierarchy/shaders/rh_tally.comp", d);
     key_ = key;
 }
 
@@ -134,7 +182,7 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
 
     for (const Group& g : find_groups(in)) {
         group_ = g;
-        HierarchyKindStats& ks = stats[g.kind];
+        HierarchyKindStats& ks = cpu_stats_[g.kind];
         ks.rays += g.count;
         ks.groups += 1;
         ks.brute_force_tests += std::uint64_t(g.count) * triangles_;
@@ -143,44 +191,24 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         const std::vector<std::uint32_t> zeros(kInfoWords - kInfoGroupFirst, 0u);
         info_.upload(zeros.data(), zeros.size() * 4, kInfoGroupFirst * 4);
         traverse(top);
-        read_group_counts();
+        tally_group();
     }
     if (!shadow) fold(in);
-    // The leaves' exact tests, counted by rh_leaf.comp and read back per group, go to the pipeline's test counters
-    // (the total and their ray kind's) in a few adds (one thread each).
-    for (std::uint32_t kind = 0; kind < std::uint32_t(kRayKinds); ++kind)
-        for (std::uint64_t& pending = pending_tests_[kind]; pending > 0;) {
-            const std::uint32_t add = std::uint32_t(std::min<std::uint64_t>(pending, 1u << 31));
-            fold_.set("rh_mode", 6u);
-            fold_.set("rh_count", add);
-            fold_.set("rh_kind", kind);
-            fold_.dispatch(1);
-            barrier();
-            pending -= add;
-        }
+    tally_read_ = false;
     gpu::check_gl("04_ray_hierarchy: trace");
 }
 
-// The group's counts (rh_info.glsl), once per group: per ray level the pairs tested and kept, the object level's,
-// the exact tests.
-void GpuRayHierarchy::read_group_counts() {
-    std::uint32_t info[kInfoWords];
-    info_.download(info, sizeof info);
-    ++syncs;
-    HierarchyKindStats& ks = stats[group_.kind];
-    for (std::size_t l = 0; l < level_nodes_.size(); ++l) {
-        ks.levels[l].pairs_in += word64(info, kInfoLevelIn + 2 * std::uint32_t(l));
-        ks.levels[l].pairs_out += word64(info, kInfoLevelOut + 2 * std::uint32_t(l));
-    }
-    const std::uint64_t exact = word64(info, kInfoExact), leaf_pairs = word64(info, kInfoLeafPairs);
-    ks.leaf_pairs += leaf_pairs;
-    if (options.sphere_test) ks.sphere_tests += leaf_pairs;
-    ks.levels[0].pairs_in += leaf_pairs;
-    ks.levels[0].pairs_out += exact;
-    ks.object_pairs_in += word64(info, kInfoObjectIn);
-    ks.object_pairs_out += word64(info, kInfoObjectOut);
-    ks.local_tests += exact;
-    pending_tests_[group_.kind] += exact;
+// The group's counts (rh_info.glsl: per ray level the pairs tested and kept, the object level's, the exact tests)
+// added to the GPU's sums per ray kind, and its exact tests to the pipeline's test counters, on the GPU: nothing is
+// read back per group (stats() reads the sums once).
+void GpuRayHierarchy::tally_group() {
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    tally_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    tally_pass_.set("rh_mode", 0u);
+    tally_pass_.set("rh_kind", group_.kind);
+    tally_pass_.set("rh_sphere_test", options.sphere_test ? 1u : 0u);
+    tally_pass_.dispatch_threads(kTallyGroupPairs + 2);
+    barrier();
 }
 
 std::vector<GpuRayHierarchy::Group> GpuRayHierarchy::find_groups(const gpu::BatchTraceInputs& in) {
@@ -194,17 +222,28 @@ std::vector<GpuRayHierarchy::Group> GpuRayHierarchy::find_groups(const gpu::Batc
     heads_.dispatch_threads(n);
     barrier();
     compaction_.compact_indices(head_flags_, n, group_heads_, group_count_);
-    const std::uint32_t count = group_count_.download_value<std::uint32_t>();
-    const std::vector<std::uint32_t> heads = group_heads_.download<std::uint32_t>(count);
-    syncs += 2;
+    // One list [count, (first ray, kind) per group] (rh_groups.comp), read back at once.
+    group_list_.reserve((1 + 2 * std::size_t(n)) * 4);
+    group_heads_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    group_count_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    group_list_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+    groups_.set("wf_input_first", unsigned(in.first));
+    groups_.set("wf_input_count", n);
+    groups_.dispatch_threads(n);
+    barrier();
+    std::vector<std::uint32_t> list = group_list_.download<std::uint32_t>(1 + 2 * std::min(n, kGroupsAtOnce));
+    ++syncs;
+    const std::uint32_t count = list[0];
+    if (count > kGroupsAtOnce) {   // more groups than the first read holds: the rest in a second one
+        list = group_list_.download<std::uint32_t>(1 + 2 * std::size_t(count));
+        ++syncs;
+    }
     std::vector<Group> groups;
     for (std::uint32_t i = 0; i < count; ++i) {
         Group g;
-        g.first = heads[i];
-        g.count = (i + 1 < count ? heads[i + 1] : n) - heads[i];
-        const gpu::WavefrontRay r = in.rays.download_value<gpu::WavefrontRay>(in.first + g.first);
-        ++syncs;
-        g.kind = std::min<std::uint32_t>(r.depth_kind >> 16, std::uint32_t(kRayKinds - 1));
+        g.first = list[1 + 2 * i];
+        g.count = (i + 1 < count ? list[1 + 2 * (i + 1)] : n) - g.first;
+        g.kind = std::min<std::uint32_t>(list[2 + 2 * i], std::uint32_t(kRayKinds - 1));
         groups.push_back(g);
     }
     return groups;
@@ -239,7 +278,7 @@ int GpuRayHierarchy::build(const gpu::BatchTraceInputs& in, const Group& g) {
         build_.dispatch_threads(level_nodes_[l]);
         barrier();
     }
-    HierarchyKindStats& ks = stats[g.kind];
+    HierarchyKindStats& ks = cpu_stats_[g.kind];
     if (ks.levels.size() < level_nodes_.size()) ks.levels.resize(level_nodes_.size());
     for (std::size_t l = 0; l < level_nodes_.size(); ++l) ks.levels[l].nodes += level_nodes_[l];
     // The level tables of rh_cull.comp.
@@ -523,10 +562,11 @@ void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
     fold_.set("rh_count", n);
     fold_.dispatch_threads(n);
     barrier();
-    std::uint32_t info[4 + kRayKinds];   // rh_info.glsl: RH_INFO_FOLD_TESTS + kind
-    info_.download(info, sizeof info);
-    ++syncs;
-    for (int k = 0; k < kRayKinds; ++k) stats[std::size_t(k)].fold_tests += info[4 + k];
+    // The fold's re-tests per ray kind (rh_info.glsl: RH_INFO_FOLD_TESTS + kind) into the GPU's sums.
+    tally_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    tally_pass_.set("rh_mode", 1u);
+    tally_pass_.dispatch(1);
+    barrier();
 }
 
 }  // namespace rt

@@ -82,14 +82,13 @@ public:
 
     HierarchyOptions options;
     gpu::GpuTimer* timer = nullptr;   // phases "rh_build", "rh_traverse", "rh_local" (per kind: "rh_build.shadow" ...)
-    // Stats since reset_stats(), indexed by RayKind (0 = primary, unused).
-    std::array<HierarchyKindStats, kRayKinds> stats;
-    void reset_stats() {
-        stats = {};
-        fold_rounds = prunes = chunks = windows = syncs = 0;
-    }
+    // Stats since reset_stats(), indexed by RayKind (0 = primary, unused). The traversal's counts are summed on the
+    // GPU (shaders/rh_tally.comp) and read here, once after the traces that made them (one sync).
+    const std::array<HierarchyKindStats, kRayKinds>& stats();
+    void reset_stats();
     std::uint64_t fold_rounds = 0, prunes = 0, chunks = 0, windows = 0;
-    std::uint64_t syncs = 0;   // GPU -> CPU read-backs since reset_stats() (each waits for the GPU)
+    // GPU -> CPU read-backs since reset_stats() (each waits for the GPU); stats() adds one when it reads the counts.
+    std::uint64_t syncs = 0;
     // The object tree of the last prepare(): levels above the triangles and nodes (0 without a tree).
     std::uint32_t object_levels() const { return std::uint32_t(object_level_count_.size()); }
     std::size_t object_nodes() const { return object_nodes_; }
@@ -118,7 +117,7 @@ private:
     void expand(int step, const Source& src, std::uint32_t count, bool on_gpu, std::uint32_t w0, std::uint32_t w);
     void leaves(int step, std::uint32_t count, bool on_gpu);
     void dispatch_chunk(const gpu::Program& p, int step, std::uint32_t count, bool on_gpu) const;
-    void read_group_counts();
+    void tally_group();   // the group's counts into the GPU's sums (no read-back)
     void leaf_dispatch(int step, std::uint32_t first, std::uint32_t count, bool on_gpu);
     void prune_hits();
     void fold(const gpu::BatchTraceInputs& in);
@@ -128,17 +127,21 @@ private:
     std::string phase(const char* name) const;
 
     std::string key_;
-    gpu::Program spheres_, tree_, build_, heads_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_;
+    gpu::Program spheres_, tree_, build_, heads_, groups_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_,
+        args_pass_, tally_pass_;
     gpu::Compaction compaction_;
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
     gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_sums_, group_heads_, group_count_,
-        head_flags_, state_, hits_, hits_tmp_, prune_flags_, prune_offsets_;
+        head_flags_, group_list_, state_, hits_, hits_tmp_, prune_flags_, prune_offsets_;
+    gpu::Buffer tally_;   // per ray kind, the GPU's sums of the traversal's counts (rh_tally.comp)
     gpu::Buffer args_;   // indirect dispatch arguments per step (3 uints each), written by rh_args.comp
     std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per step of the depth-first traversal (0 = the top)
     std::vector<std::uint32_t> level_first_, level_nodes_;   // the ray hierarchy's levels (level 0 = the rays)
     std::vector<std::uint32_t> object_level_first_, object_level_count_;   // the object tree's (level 1 first)
     std::size_t triangles_ = 0, objects_ = 0, object_nodes_ = 0, capacity_ = 0, hit_capacity_ = 0;
-    std::uint64_t pending_tests_[kRayKinds] = {};   // leaf tests not yet added to the test counters, by ray kind
+    // The stats the CPU counts itself (rays, groups, nodes, brute force), and with the GPU's sums added (stats()).
+    std::array<HierarchyKindStats, kRayKinds> cpu_stats_, stats_;
+    bool tally_read_ = true;   // stats_ holds the GPU's sums as they are now
     std::uint64_t hits_bound_ = 0;    // an upper bound of the hit list's length (read back when it may be full)
     // The batch being traced.
     const gpu::BatchTraceInputs* in_ = nullptr;

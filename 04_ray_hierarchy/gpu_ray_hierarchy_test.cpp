@@ -253,8 +253,8 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
         const auto closest = results.download<gpu::WavefrontTraceResult>(1000);
         h.trace({ray_buffer, 1000, 500, results, nullptr, wavefront}, true);
         const auto occluded = results.download<std::uint32_t>(500);
-        EXPECT_EQ(h.stats[2].groups + h.stats[3].groups, 2u);
-        EXPECT_EQ(h.stats[1].groups, 2u);   // one hierarchy per light
+        EXPECT_EQ(h.stats()[2].groups + h.stats()[3].groups, 2u);
+        EXPECT_EQ(h.stats()[1].groups, 2u);   // one hierarchy per light
         std::size_t hits = 0;
         for (std::size_t i = 0; i < rays.size(); ++i) {
             Ray<float> ray;
@@ -286,7 +286,7 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
             }
         }
         EXPECT_GT(hits, 500u) << what;
-        EXPECT_LE(h.stats[2].local_tests, h.stats[2].brute_force_tests);
+        EXPECT_LE(h.stats()[2].local_tests, h.stats()[2].brute_force_tests);
     }
 }
 
@@ -430,7 +430,7 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
         h.options = HierarchyOptions{b, 0, ObjectMode::triangles};
         h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
         h.trace({ray_buffer, 0, rays.size(), results, nullptr, wavefront}, false);
-        const HierarchyKindStats& k = h.stats[2];
+        const HierarchyKindStats& k = h.stats()[2];
         ASSERT_EQ(k.groups, 1u);
         const std::size_t top = k.levels.size() - 1;
         EXPECT_EQ(k.levels[top].nodes, 1u);
@@ -455,9 +455,10 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
 
 // A batch whose chunks fit one window each is traced without a read-back inside it: the GPU sizes every step's
 // dispatches from the counts it wrote itself (rh_args.comp). Shadow rays of one light (one group): the read-backs are
-// the batch's groups (3), the group's counts (1) and, once the CPU's bound of the pairs (x4 a step) passes the pair
-// capacity, one look at the real count (2), however many steps the traversal takes (a read-back per step before);
-// with 64-pair buffers the chunks are cut into windows (read-backs), with the same occlusion and counts.
+// the batch's groups (1: their starts and kinds in one list) and, once the CPU's bound of the pairs (x4 a step)
+// passes the pair capacity, one look at the real count (2), however many steps the traversal takes (a read-back per
+// step before); the group's counts stay on the GPU (rh_tally.comp) until stats() reads them, once (1). With 64-pair
+// buffers the chunks are cut into windows (read-backs), with the same occlusion and counts.
 TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
     gpu::test_context();
     const TraceSetup setup("cornell");
@@ -486,19 +487,61 @@ TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
         h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
         h.trace({ray_buffer, 0, rays.size(), results, nullptr, wavefront}, true);
         const std::vector<std::uint32_t> occluded = results.download<std::uint32_t>(rays.size());
-        ASSERT_EQ(h.stats[1].groups, 1u);
+        const std::uint64_t trace_syncs = h.syncs;
+        ASSERT_EQ(h.stats()[1].groups, 1u);
+        EXPECT_EQ(h.syncs, trace_syncs + 1) << "stats() reads the GPU's sums once";
+        EXPECT_EQ(h.stats()[1].groups, 1u);
+        EXPECT_EQ(h.syncs, trace_syncs + 1) << "and not again while no trace ran";
         EXPECT_GT(h.chunks, 5u) << "steps of the traversal";
         if (capacity == 0) {
-            EXPECT_LE(h.syncs, 6u) << "the groups (3), the group's counts (1), one bound check (2)";
+            EXPECT_LE(trace_syncs, 3u) << "the groups (1), one bound check (2)";
             EXPECT_LT(h.syncs, h.chunks);
             reference = occluded;
-            reference_tests = h.stats[1].node_tests();
+            reference_tests = h.stats()[1].node_tests();
         } else {
             EXPECT_GT(h.syncs, 4u) << "64-pair windows are read back";
             EXPECT_EQ(occluded, reference);
-            EXPECT_EQ(h.stats[1].node_tests(), reference_tests);
+            EXPECT_EQ(h.stats()[1].node_tests(), reference_tests);
         }
     }
+}
+
+// More groups than the first read-back of the group list holds (kGroupsAtOnce = 64): shadow rays whose light changes
+// from ray to ray, 150 groups of one ray each. All are found (a second read-back), each traced on its own, and every
+// ray is occluded as it is in one group (the light does not change what a shadow ray hits).
+TEST(GpuRayHierarchy, ABatchOfManyGroupsFindsEveryGroup) {
+    gpu::test_context();
+    const TraceSetup setup("cornell");
+    const Scene& scene = setup.scene;
+    std::mt19937 g(11);
+    std::uniform_real_distribution<float> u(0.1f, 0.9f);
+    const glm::vec3 lo = scene.bounds.lo, size = scene.bounds.hi - scene.bounds.lo;
+    std::vector<gpu::WavefrontRay> rays;
+    for (std::uint32_t i = 0; i < 150; ++i) {
+        gpu::WavefrontRay r{};
+        r.origin = lo + size * glm::vec3(u(g), u(g), u(g));
+        r.direction = ray_sets::unit(g);
+        r.tmax = 0.5f * glm::length(size);
+        r.depth_kind = 1u << 16 | 1u;
+        r.light = i % 2;   // a new group at every ray
+        rays.push_back(r);
+    }
+    std::vector<gpu::WavefrontRay> one_group = rays;
+    for (gpu::WavefrontRay& r : one_group) r.light = 0;
+    gpu::Buffer results(rays.size() * 4);
+    std::vector<std::uint32_t> occluded[2];
+    for (int pass = 0; pass < 2; ++pass) {
+        const gpu::Buffer ray_buffer = gpu::Buffer::from(pass == 0 ? rays : one_group);
+        GpuRayHierarchy h;
+        h.prepare(setup.gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+        h.trace({ray_buffer, 0, rays.size(), results, nullptr, setup.wavefront}, true);
+        occluded[pass] = results.download<std::uint32_t>(rays.size());
+        EXPECT_EQ(h.stats()[1].groups, pass == 0 ? 150u : 1u);
+        EXPECT_EQ(h.stats()[1].rays, 150u);
+    }
+    EXPECT_EQ(occluded[0], occluded[1]);
+    EXPECT_GT(std::count(occluded[0].begin(), occluded[0].end(), 1u), 0) << "some rays are occluded";
+    EXPECT_GT(std::count(occluded[0].begin(), occluded[0].end(), 0u), 0) << "some are not";
 }
 
 std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {

@@ -79,6 +79,7 @@ std::vector<std::string> RayHierarchyRenderer::stage_programs() const {
 
 void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     const HierarchyOptions& o = hierarchy_options;
+    const std::array<HierarchyKindStats, kRayKinds>& stats = hierarchy_->stats();   // the frame's one read of them
     nlohmann::json rh = {{"branching", o.branching},
                          {"levels_limit", o.levels},
                          {"objects", object_mode_name(o.objects)},
@@ -99,7 +100,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     auto ms = [&](const std::string& name) { return pass_ms.contains(name) ? double(pass_ms[name]) : 0.0; };
     nlohmann::json kinds = nlohmann::json::object();
     for (int k = 1; k < kRayKinds; ++k) {
-        const HierarchyKindStats& s = hierarchy_->stats[std::size_t(k)];
+        const HierarchyKindStats& s = stats[std::size_t(k)];
         if (s.rays == 0) continue;
         nlohmann::json levels = nlohmann::json::array();
         for (std::size_t l = 0; l < s.levels.size(); ++l) {

@@ -8,9 +8,8 @@
 //   3 resolve  per ray: the result (WavefrontTraceResult; triangle -1 for a miss);
 //   4 prune    per listed hit: rh_keep[i] = 1 if it is still within the tie range (hits left behind by a closer one
 //              are dropped from the list when it fills up: they can no longer matter).
-//   5 scatter  per listed hit: the kept ones to rh_hits_out[offset] (rh_keep bound to the scan of mode 4's flags);
-//   6 count    one thread: adds rh_count ray/triangle tests (the leaves', counted on the CPU) of rays of kind
-//              rh_kind to the counters.
+//   5 scatter  per listed hit: the kept ones to rh_hits_out[offset] (rh_keep bound to the scan of mode 4's flags).
+// (The leaves' exact tests reach the pipeline's test counters through rh_tally.comp.)
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 #include "rh_closest.glsl"
@@ -23,12 +22,11 @@ layout(std430, binding = RH_BINDING_PAIRS) writeonly buffer HitsOut { uvec4 rh_h
 
 uniform uint rh_mode;
 uniform uint rh_count;
-uniform uint rh_kind;   // mode 6
 uniform uint rh_batch_first;
 
 void main() {
     const uint i = rt_global_index();
-    if (i >= (rh_mode == 6u ? 1u : rh_count)) return;
+    if (i >= rh_count) return;
     if (rh_mode == 0u) {
         rh_state[i] = RhRayState(0x7f800000u, 0u, 0xffffffffu, -1, RT_INFINITY, 0.0, 0.0, 0u);
     } else if (rh_mode == 1u) {
@@ -68,11 +66,6 @@ void main() {
     } else if (rh_mode == 4u) {
         const uvec4 h = rh_hits[i];
         rh_keep[i] = rh_near(uintBitsToFloat(h.z), rh_state[h.x].min_t) ? 1u : 0u;
-    } else if (rh_mode == 6u) {
-#ifdef COUNT_TESTS
-        rt_counter_add(RT_COUNTER_INTERSECTION_TESTS, rh_count);
-        rt_counter_add(RT_COUNTER_TESTS_FIRST + rh_kind, rh_count);
-#endif
     } else {
         const uvec4 h = rh_hits[i];   // rh_keep holds the exclusive scan of mode 4's flags now
         if (rh_near(uintBitsToFloat(h.z), rh_state[h.x].min_t)) rh_hits_out[rh_keep[i]] = h;

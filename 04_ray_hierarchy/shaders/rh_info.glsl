@@ -1,6 +1,6 @@
-// The traversal's counters (GpuRayHierarchy reads the group's 64-bit counts back once per group, a chunk's length
-// only when it must cut the next step into windows). A 64-bit count is a (lo, hi) pair of uints: rh_add64 carries into hi when lo wraps,
-// so a group's pairs may pass 2^32.
+// The traversal's counters (rh_tally.comp adds the group's 64-bit counts to the frame's sums after each group; the
+// CPU reads a chunk's length only when it must cut the next step into windows). A 64-bit count is a (lo, hi) pair of
+// uints: rh_add64 carries into hi when lo wraps, so a group's pairs may pass 2^32.
 #define RH_INFO_SURVIVORS 0u      // unused
 #define RH_INFO_HITS 1u           // the hit list's length (closest hits)
 #define RH_INFO_FOLD 2u           // the fold's "some ray has a next hit" flag
