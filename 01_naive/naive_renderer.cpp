@@ -10,6 +10,7 @@
 #include "01_naive/brute_force_tracer.h"
 #include "common/app/options.h"
 #include "common/app/pixel_samples.h"
+#include "common/app/parallel_rows.h"
 #include "common/app/progress.h"
 #include "common/trace/whitted.h"
 

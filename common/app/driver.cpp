@@ -27,6 +27,7 @@
 #include "input_error.h"
 #include "options.h"
 #include "output_files.h"
+#include "parallel_rows.h"
 #include "progress.h"
 #include "ray_tree.h"
 

@@ -1,14 +1,11 @@
-// A progress bar on stderr that appears only once a render has taken longer than a second (and never with --quiet),
-// and a parallel loop over image rows that feeds it.
+// A progress bar on stderr that appears only once a render has taken longer than a second (and never with --quiet).
+// (parallel_rows.h feeds it from stage 01's rows, the wavefront pipeline from its batches.)
 #pragma once
 
 #include <atomic>
 #include <chrono>
-#include <functional>
 #include <mutex>
 #include <string>
-
-#include "../trace/ray.h"
 
 namespace rt {
 
@@ -30,13 +27,5 @@ private:
     bool shown_ = false;
     int last_percent_ = -1;
 };
-
-// Number of threads for --threads N (0 = all hardware threads).
-int resolve_thread_count(int requested);
-
-// Calls body(row, counters) for every row in [0, rows), rows handed out dynamically to `threads` threads; each
-// thread's counters are added into `counters` at the end. Exceptions in a worker are rethrown in the caller.
-void parallel_rows(int rows, int threads, Progress& progress, RayCounters& counters,
-                   const std::function<void(int row, RayCounters& counters)>& body);
 
 }  // namespace rt
