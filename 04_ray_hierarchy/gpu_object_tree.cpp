@@ -1,19 +1,18 @@
 // Stage 04's per-frame work on the geometry, the objects' side of GpuRayHierarchy (gpu_ray_hierarchy.h): the
 // triangles' bounding spheres (rh_spheres.comp) and, by --objects, the mesh objects or the object tree
-// (object_tree.h; shaders/ot_build.comp and the shared radix sort). The rays' side, the traversal and the leaves are
-// in gpu_ray_hierarchy.cpp.
+// (object_tree.h; shaders/ot_build.comp and the shared radix sort). The rays' side is in gpu_ray_hierarchy.cpp, the
+// traversal and the leaves in gpu_ray_traversal.cpp.
 #include "gpu_ray_hierarchy.h"
 
 #include <algorithm>
+
+#include "gpu_ray_hierarchy_detail.h"
 
 namespace rt {
 
 namespace {
 using gpu::Program;
-
-void barrier() {
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-}
+using rh_detail::barrier;
 }  // namespace
 
 void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<ObjectRange>& objects,
@@ -76,7 +75,8 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     // The levels' sizes follow from n alone: level 1 holds ceil(n / kClusterSize) clusters, each level above
     // ceil(below / kObjectBranching) nodes, up to one.
     std::uint32_t total = 0;
-    for (std::uint32_t count = (n + kClusterSize - 1) / kClusterSize;; count = (count + kObjectBranching - 1) / kObjectBranching) {
+    for (std::uint32_t count = (n + kClusterSize - 1) / kClusterSize;;
+         count = (count + kObjectBranching - 1) / kObjectBranching) {
         object_level_first_.push_back(total);
         object_level_count_.push_back(count);
         total += count;
@@ -107,7 +107,8 @@ ObjectTree GpuRayHierarchy::download_tree() const {
     tree.level_first = object_level_first_;
     tree.level_count = object_level_count_;
     tree.nodes = objects_buf_.download<ObjectNode>(object_nodes_);
-    tree.order = options.objects == ObjectMode::tree ? order_.download<std::uint32_t>(triangles_) : std::vector<std::uint32_t>{};
+    tree.order = options.objects == ObjectMode::tree ? order_.download<std::uint32_t>(triangles_)
+                                                     : std::vector<std::uint32_t>{};
     return tree;
 }
 

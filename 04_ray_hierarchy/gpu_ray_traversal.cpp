@@ -1,0 +1,317 @@
+// Stage 04's traversal, the pairs' side of GpuRayHierarchy (gpu_ray_hierarchy.h): candidate pairs (ray side, object
+// side) from the top, tested (rh_cull.comp), scanned and expanded (rh_expand.comp) step by step, depth first, window
+// by window; the (ray, triangle) pairs of the last step to the leaves (rh_leaf.comp), and for closest hits the fold
+// (rh_fold.comp, rh_closest.glsl). The groups, the rays' build and the stats are in gpu_ray_hierarchy.cpp, the
+// objects' side in gpu_object_tree.cpp.
+#include <algorithm>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "gpu_ray_hierarchy.h"
+#include "gpu_ray_hierarchy_detail.h"
+
+namespace rt {
+
+namespace {
+using gpu::Program;
+using namespace rh_detail;
+}  // namespace
+
+// The buffers of one step of the traversal, for `pairs` pairs tested there (grown as needed, never shrunk).
+void GpuRayHierarchy::step_buffers(int step, std::size_t pairs) {
+    if (int(pairs_.size()) <= step) {
+        pairs_.resize(step + 1);
+        counts_.resize(step + 1);
+        offsets_.resize(step + 1);
+    }
+    counts_[step].reserve(pairs * 4);
+    offsets_[step].reserve((pairs / 64 + 1) * 4);   // the work groups' offsets
+    group_sums_.reserve((capacity_ / 64 + 1) * 4);
+}
+
+void GpuRayHierarchy::set_source(const Program& p, const Source& s) const {
+    p.set("rh_implicit", s.implicit ? 1u : 0u);
+    p.set("rh_pair_first", s.pair_first);
+    p.set("rh_top_level", unsigned(top_));
+    p.set("rh_node_first", s.node_first);
+    p.set("rh_item_first", s.item_first);
+    p.set("rh_item_count", std::max<std::uint32_t>(s.item_count, 1));
+    p.set("rh_item_flag", s.item_flag);
+}
+
+// The top's pairs are every top node with every item (triangles, mesh objects or the tree's top level): implicit
+// chunks of at most capacity() pairs, whole rows of items when a row fits.
+void GpuRayHierarchy::traverse(int top) {
+    top_ = top;
+    // Every split takes one side one level down, so after this many steps only (ray, triangle) pairs are left.
+    const int object_steps = options.objects == ObjectMode::tree     ? int(object_levels())
+                             : options.objects == ObjectMode::meshes ? 1
+                                                                     : 0;
+    max_depth_ = top + object_steps;
+    const bool triangles = options.objects == ObjectMode::triangles;
+    const std::uint32_t items = std::uint32_t(triangles ? triangles_ : objects_);
+    const std::uint32_t item_first = triangles ? 0u : object_level_first_.back();
+    const std::uint32_t flag = triangles ? kTriangleFlag : 0u;
+    const std::uint32_t nodes = level_nodes_[top];
+    const std::uint32_t cap = std::uint32_t(capacity_);
+    if (items <= cap) {
+        const std::uint32_t per_chunk = cap / items;
+        for (std::uint32_t n0 = 0; n0 < nodes; n0 += per_chunk) {
+            const std::uint32_t k = std::min(per_chunk, nodes - n0);
+            test_chunk(0, Source{true, 0, n0, item_first, items, flag}, k * items, false);
+        }
+    } else {
+        for (std::uint32_t n0 = 0; n0 < nodes; ++n0)
+            for (std::uint32_t i0 = 0; i0 < items; i0 += cap) {
+                const std::uint32_t k = std::min(cap, items - i0);
+                test_chunk(0, Source{true, 0, n0, item_first + i0, k, flag}, k, false);
+            }
+    }
+}
+
+// One chunk of pairs at one step of the traversal: test, scan, the leaves' pairs to rh_leaf.comp, then the
+// children expanded window by window, each window traced on before the next (depth first, so each step needs one
+// buffer of capacity() pairs).
+//
+// `on_gpu`: the chunk's length is known on the GPU only (rh_info[kInfoStepCount + step], args_ holds its dispatch),
+// and `count` is a bound of it. While the children of a chunk cannot outnumber one window (count x the most
+// children a pair has), the traversal goes on without reading anything back: the passes are dispatched indirectly.
+// Only when that bound passes capacity() are the chunk's counts read back (one sync), to cut it into windows.
+void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t count, bool on_gpu) {
+    if (step > kMaxSteps) throw std::logic_error("04_ray_hierarchy: more traversal steps than rh_info.glsl holds");
+    step_buffers(step, count);
+    const std::uint32_t b = std::uint32_t(options.branching);
+    const std::uint32_t slot = kInfoStepCount + std::uint32_t(step);
+    std::uint32_t total = 0;
+    // The most children one pair of this chunk can have: B rays, 4 tree nodes or a cluster's 4 triangles, or a mesh
+    // object's triangles (only at the top: below it every object side is a triangle).
+    const std::uint64_t most =
+        options.objects == ObjectMode::meshes && step == 0 ? 4096 : std::max<std::uint32_t>(b, 4);
+    // Every split takes one side one level down, so all pairs of a step are equally deep: the last step holds only
+    // (ray, triangle) pairs, and only it does. They go to the leaves; the other steps are tested and expanded.
+    if (step >= max_depth_) {
+        ++chunks;
+        leaves(step, count, on_gpu);
+        return;
+    }
+    const bool chain = std::uint64_t(count) * most <= capacity_;
+    {
+        std::optional<gpu::GpuTimer::Scope> timed;
+        if (timer) timed.emplace(*timer, phase("rh_traverse"));
+        if (on_gpu) group_sums_.clear_u32(0);   // the scan reads the sums of every work group the bound may need
+        in_->rays.bind(gpu::kWavefrontBindingRaysIn);
+        nodes_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
+        spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
+        objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
+        if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+        counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
+        info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+        group_sums_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+        set_source(cull_, src);
+        cull_.set("rh_group_first", unsigned(in_->first + group_.first));
+        cull_.set("rh_branching", b);
+        cull_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
+        dispatch_chunk(cull_, step, count, on_gpu);
+        const std::size_t groups = (std::size_t(count) + 63) / 64;
+        compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);
+        if (!chain) {
+            if (on_gpu) count = read_info(int(slot));
+            on_gpu = false;
+            total = read_info(int(slot) + 1);
+        }
+        ++chunks;
+    }
+    const std::uint32_t cap = std::uint32_t(capacity_);
+    if (chain) {   // one window of at most `cap` pairs, whatever the GPU found
+        expand(step, src, count, on_gpu, 0, cap);
+        {
+            std::optional<gpu::GpuTimer::Scope> timed;
+            if (timer) timed.emplace(*timer, phase("rh_traverse"));
+            info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+            args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+            args_pass_.set("rh_slot", slot + 1);
+            args_pass_.set("rh_args_first", unsigned(step + 1) * 3);
+            args_pass_.dispatch(1);
+            barrier();
+        }
+        const auto bound = std::uint32_t(std::min<std::uint64_t>(std::uint64_t(count) * most, cap));
+        test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, bound, true);
+        return;
+    }
+    for (std::uint32_t w0 = 0; w0 < total; w0 += cap) {
+        const std::uint32_t w = std::min(cap, total - w0);
+        expand(step, src, count, false, w0, w);
+        test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, w, false);
+    }
+}
+
+// A pass over a chunk of `count` pairs (rh_pairs.glsl: rh_chunk_count): dispatched for them, or, on_gpu, indirectly
+// for the length the GPU wrote to the step's slot (count is then only a bound).
+void GpuRayHierarchy::dispatch_chunk(const Program& p, int step, std::uint32_t count, bool on_gpu) const {
+    p.set("rh_count", count);
+    p.set("rh_count_slot", on_gpu ? kInfoStepCount + std::uint32_t(step) : 0u);
+    if (on_gpu)
+        p.dispatch_indirect(args_, std::size_t(step) * 12);
+    else
+        p.dispatch_threads(count);
+    barrier();
+}
+
+// The children of a chunk's survivors with outputs in [w0, w0 + w) to pairs_[step + 1].
+void GpuRayHierarchy::expand(int step, const Source& src, std::uint32_t count, bool on_gpu, std::uint32_t w0,
+                             std::uint32_t w) {
+    std::optional<gpu::GpuTimer::Scope> timed;
+    if (timer) timed.emplace(*timer, phase("rh_traverse"));
+    step_buffers(step + 1, 0);
+    pairs_[step + 1].reserve(std::size_t(w) * 8);
+    order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
+    objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
+    if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+    pairs_[step + 1].bind(gpu::kWavefrontBindingTraversalFirst + 4);
+    counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    set_source(expand_, src);
+    expand_.set("rh_window_first", w0);
+    expand_.set("rh_window_count", w);
+    expand_.set("rh_branching", unsigned(options.branching));
+    expand_.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
+    dispatch_chunk(expand_, step, count, on_gpu);
+    ++windows;
+}
+
+// The last step's chunk of `count` (ray, triangle) pairs (a bound of them, on_gpu) to rh_leaf.comp.
+void GpuRayHierarchy::leaves(int step, std::uint32_t count, bool on_gpu) {
+    const std::uint32_t leaf_pairs = count;
+    if (shadow_) {
+        leaf_dispatch(step, 0, count, on_gpu);
+        return;
+    }
+    // The hit list holds hit_capacity_ entries: a chunk goes in once there is room for all of its leaf pairs (each
+    // may add one hit); when there is not, hits left behind by closer ones are pruned, and the chunk is split if
+    // needed (a part of n pairs holds at most n leaf pairs). Only a batch whose rays all keep 4 hits within the tie
+    // range would fill it: then a clear error, not a dropped hit.
+    const std::uint64_t cap = hit_capacity_;
+    if (hits_bound_ + leaf_pairs > cap) {
+        hits_bound_ = read_info(1);
+        if (hits_bound_ + leaf_pairs > cap) {
+            prune_hits();
+            hits_bound_ = read_info(1);
+        }
+    }
+    if (hits_bound_ + leaf_pairs <= cap) {
+        leaf_dispatch(step, 0, count, on_gpu);
+        hits_bound_ += leaf_pairs;
+        return;
+    }
+    if (on_gpu) {   // the chunk is cut into parts by its length: read it
+        count = read_info(int(kInfoStepCount) + step);
+        on_gpu = false;
+    }
+    for (std::uint32_t first = 0; first < count;) {
+        if (hits_bound_ + (count - first) > cap) {
+            hits_bound_ = read_info(1);
+            if (hits_bound_ + (count - first) > cap) {
+                prune_hits();
+                hits_bound_ = read_info(1);
+            }
+        }
+        const std::uint64_t room = cap - hits_bound_;
+        if (room == 0)
+            throw std::runtime_error("04_ray_hierarchy: more than " + std::to_string(cap) +
+                                     " hits within the tie range of their rays' closest hits (the hit list is full)");
+        const std::uint32_t n = std::uint32_t(std::min<std::uint64_t>(room, count - first));
+        leaf_dispatch(step, first, n, false);
+        hits_bound_ += n;
+        first += n;
+    }
+}
+
+void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t count, bool on_gpu) {
+    std::optional<gpu::GpuTimer::Scope> timed;
+    if (timer) timed.emplace(*timer, phase("rh_local"));
+    const Program& p = shadow_ ? leaf_shadow_ : leaf_closest_;
+    const gpu::BatchTraceInputs& in = *in_;
+    in.rays.bind(gpu::kWavefrontBindingRaysIn);
+    in.results.bind(gpu::kWavefrontBindingResults);
+    if (in.tests_per_pixel) in.tests_per_pixel->bind(gpu::kWavefrontBindingTestsPerPixel);
+    pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    if (!shadow_) {
+        hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+        state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    }
+    in.wavefront.set_uniforms(p);
+    set_source(p, Source{false, first, 0, 0, 0, 0});
+    p.set("rh_group_first", unsigned(in.first + group_.first));
+    p.set("rh_batch_first", unsigned(in.first));
+    p.set("rh_sphere_test", options.sphere_test ? 1u : 0u);
+    dispatch_chunk(p, step, count, on_gpu);
+}
+
+void GpuRayHierarchy::prune_hits() {
+    const std::uint32_t used = read_info(1);
+    ++prunes;
+    prune_flags_.reserve(hit_capacity_ * 4);
+    prune_offsets_.reserve(hit_capacity_ * 4);
+    hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+    state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    prune_flags_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    fold_.set("rh_mode", 4u);
+    fold_.set("rh_count", used);
+    fold_.dispatch_threads(used);
+    barrier();
+    compaction_.scan().exclusive_flags(prune_flags_, prune_offsets_, used, &info_, 4);   // the kept count: the length
+    hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+    state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    prune_offsets_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    hits_tmp_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
+    fold_.set("rh_mode", 5u);
+    fold_.dispatch_threads(used);
+    barrier();
+    std::swap(hits_, hits_tmp_);
+}
+
+// Step 2 of rh_closest.glsl: one listed hit per ray and round, in increasing triangle id, until none is left.
+void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
+    std::optional<gpu::GpuTimer::Scope> timed;
+    if (timer) timed.emplace(*timer, "rh_local.fold");
+    const std::uint32_t n = std::uint32_t(in.count);
+    const std::uint32_t used = read_info(1);
+    in.rays.bind(gpu::kWavefrontBindingRaysIn);
+    in.results.bind(gpu::kWavefrontBindingResults);
+    if (in.tests_per_pixel) in.tests_per_pixel->bind(gpu::kWavefrontBindingTestsPerPixel);
+    hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+    state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    in.wavefront.set_uniforms(fold_);
+    fold_.set("rh_batch_first", unsigned(in.first));
+    for (;;) {
+        const std::uint32_t zero = 0;
+        info_.upload(&zero, 4, 8);
+        fold_.set("rh_mode", 1u);
+        fold_.set("rh_count", used);
+        if (used > 0) fold_.dispatch_threads(used);
+        barrier();
+        if (read_info(2) == 0) break;
+        ++fold_rounds;
+        fold_.set("rh_mode", 2u);
+        fold_.set("rh_count", n);
+        fold_.dispatch_threads(n);
+        barrier();
+    }
+    fold_.set("rh_mode", 3u);
+    fold_.set("rh_count", n);
+    fold_.dispatch_threads(n);
+    barrier();
+    // The fold's re-tests per ray kind (rh_info.glsl: RH_INFO_FOLD_TESTS + kind) into the GPU's sums.
+    tally_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    tally_pass_.set("rh_mode", 1u);
+    tally_pass_.dispatch(1);
+    barrier();
+}
+
+}  // namespace rt
