@@ -1,202 +1,25 @@
-// Stage 04 on the GPU:
-//  - the GLSL twins (rh_common.glsl) keep the hierarchy's two properties on the adversarial ray sets (ray_sets.h):
-//    every ray inside all its ancestors, and no rejected (node, triangle) pair that a ray below hits;
-//  - the batch traversal on crafted rays (all directions, identical rays, one origin, zero and NaN directions, ...)
-//    gives exactly brute force's closest hits and occlusion;
-//  - the renderer's image, hits and ray counts equal stage 02's for every branching, a --levels limit and without
-//    object culling, and under a tiny storage limit (many chunks and windows, a pruned hit list).
+// Stage 04's batch traversal on the GPU (gpu_ray_hierarchy.h): on crafted rays (all directions, identical rays, one
+// origin, zero and NaN directions, ...) exactly brute force's closest hits and occlusion, on scenes moved far and
+// shrunk; the object tree built as the CPU twin builds it; stats that add up; the read-backs a batch makes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <tuple>
-#include <cstring>
+#include <bit>
 #include <random>
 
-#include "02_raster_hybrid/hybrid_renderer.h"
-#include "common/gpu/glsl_test_harness.h"
 #include "common/gpu/gpu_scene.h"
 #include "common/gpu/gpu_test_context.h"
-#include "common/gpu/same_frame_expectations.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/intersect.h"
 #include "gpu_ray_hierarchy.h"
 #include "object_tree.h"
 #include "ray_hierarchy.h"
-#include "ray_hierarchy_renderer.h"
 #include "ray_sets.h"
 #include "tests/stage_test_fixture.h"
 
 namespace rt {
 namespace {
-
-using gpu::Words;
-
-std::uint32_t bits(float f) {
-    std::uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
-
-RhNode node_at(const std::vector<std::uint32_t>& w, std::size_t i) {
-    RhNode n;
-    for (int k = 0; k < 4; ++k) n.sphere[k] = gpu::word_f(w, i + k);
-    for (int k = 0; k < 4; ++k) n.cone[k] = gpu::word_f(w, i + 4 + k);
-    return n;
-}
-
-// rh_union in GLSL: per record, the child count and 16 children (sphere, cone); out the node (sphere, cone).
-gpu::GlslTestHarness& glsl_union() {
-    static gpu::GlslTestHarness join("rh_union", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
-void test_main() {
-    RhNode kids[16];
-    for (uint k = 0u; k < 16u; ++k) kids[k] = RhNode(in_vec4(1u + 8u * k), in_vec4(5u + 8u * k));
-    const RhNode n = rh_union(kids, in_u(0u));
-    out_vec4(0u, n.sphere);
-    out_vec4(4u, n.cone);
-})");
-    return join;
-}
-
-// The hierarchy built by the GLSL functions (leaves, then unions level by level), one harness run per level.
-std::vector<std::vector<RhNode>> glsl_build(const std::vector<RhRay>& rays, int b) {
-    static gpu::GlslTestHarness leaf("rh_leaf", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
-void test_main() {
-    const RhNode n = rh_leaf(in_vec3(0u), in_vec3(3u));
-    out_vec4(0u, n.sphere);
-    out_vec4(4u, n.cone);
-})");
-    gpu::GlslTestHarness& join = glsl_union();
-    Words in;
-    for (const RhRay& r : rays) in << r.origin << r.direction;
-    std::vector<std::vector<RhNode>> levels(1);
-    const auto out = leaf.run(in.words, rays.size(), 6, 8);
-    for (std::size_t i = 0; i < rays.size(); ++i) levels[0].push_back(node_at(out, 8 * i));
-    while (levels.back().size() > 1 || levels.size() == 1) {
-        const std::vector<RhNode>& below = levels.back();
-        const std::size_t parents = (below.size() + b - 1) / b;
-        Words w;
-        for (std::size_t j = 0; j < parents; ++j) {
-            const std::size_t count = std::min<std::size_t>(b, below.size() - j * b);
-            w << std::uint32_t(count);
-            for (std::size_t k = 0; k < 16; ++k) {
-                const RhNode n = k < count ? below[j * b + k] : RhNode{};
-                w << n.sphere << n.cone;
-            }
-        }
-        const auto o = join.run(w.words, parents, 129, 8);
-        std::vector<RhNode> level;
-        for (std::size_t j = 0; j < parents; ++j) level.push_back(node_at(o, 8 * j));
-        levels.push_back(std::move(level));
-    }
-    return levels;
-}
-
-std::vector<glm::vec4> glsl_spheres(const std::vector<glm::vec3>& triangles) {
-    static gpu::GlslTestHarness h("rh_triangle_sphere", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
-void test_main() { out_vec4(0u, rh_triangle_sphere(in_vec3(0u), in_vec3(3u), in_vec3(6u))); })");
-    Words in;
-    for (const glm::vec3& v : triangles) in << v;
-    const auto out = h.run(in.words, triangles.size() / 3, 9, 4);
-    std::vector<glm::vec4> s;
-    for (std::size_t i = 0; i < triangles.size() / 3; ++i)
-        s.emplace_back(gpu::word_f(out, 4 * i), gpu::word_f(out, 4 * i + 1), gpu::word_f(out, 4 * i + 2),
-                       gpu::word_f(out, 4 * i + 3));
-    return s;
-}
-
-TEST(GlslRayHierarchy, EveryRayInsideItsAncestorsAndNoHitRejected) {
-    gpu::test_context();
-    static gpu::GlslTestHarness may_hit("rh_may_hit", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
-void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec4(8u))); })");
-    std::size_t rejected = 0;
-    for (const ray_sets::Case& c : ray_sets::all())
-        for (int b : {4, 8, 16}) {
-            const auto levels = glsl_build(c.rays, b);
-            ASSERT_EQ(levels.back().size(), 1u);
-            for (std::size_t i = 0; i < c.rays.size(); ++i) {
-                if (rh_leaf(c.rays[i].origin, c.rays[i].direction).empty()) {
-                    EXPECT_TRUE(levels[0][i].empty()) << c.name << " ray " << i;
-                    continue;
-                }
-                std::size_t j = i;
-                for (std::size_t l = 1; l < levels.size(); ++l) {
-                    j /= std::size_t(b);
-                    ASSERT_TRUE(rh_contains(levels[l][j], c.rays[i].origin, c.rays[i].direction))
-                        << c.name << " B=" << b << " ray " << i << " level " << l;
-                }
-            }
-            // Every (node, triangle) pair at once through the GLSL test.
-            const std::vector<glm::vec4> spheres = glsl_spheres(c.triangles);
-            Words in;
-            std::vector<std::pair<std::size_t, std::size_t>> pairs;   // (level, node) per record, triangle-major
-            for (std::size_t t = 0; t < spheres.size(); ++t)
-                for (std::size_t l = 1; l < levels.size(); ++l)
-                    for (std::size_t j = 0; j < levels[l].size(); ++j) {
-                        in << levels[l][j].sphere << levels[l][j].cone << spheres[t];
-                        pairs.emplace_back(l, j);
-                    }
-            const auto out = may_hit.run(in.words, pairs.size(), 12, 1);
-            const std::size_t per_triangle = pairs.size() / spheres.size();
-            for (std::size_t p = 0; p < pairs.size(); ++p) {
-                if (out[p] != 0) continue;
-                ++rejected;
-                const auto [l, j] = pairs[p];
-                const std::size_t t = p / per_triangle;
-                std::size_t span = 1;
-                for (std::size_t k = 0; k < l; ++k) span *= std::size_t(b);
-                for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i)
-                    ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], &c.triangles[3 * t]))
-                        << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
-            }
-        }
-    EXPECT_GT(rejected, 1000u);
-}
-
-// Empty children (rays of zero or non-finite direction, the padding of a last node) are left out of a union: a node
-// over some children with empty ones between them is, bit for bit, the node over those children alone.
-TEST(GlslRayHierarchy, EmptyChildrenAreLeftOutOfTheUnion) {
-    gpu::test_context();
-    gpu::GlslTestHarness& join = glsl_union();
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    Words w;
-    const int cases = 64;
-    for (int c = 0; c < cases; ++c) {
-        const std::size_t n = 1 + std::size_t(c % 8);
-        std::vector<RhNode> kids;
-        for (std::size_t k = 0; k < n; ++k)
-            kids.push_back(rh_leaf({u(rng) * 5, u(rng) * 5, u(rng) * 5}, {u(rng), u(rng), 0.5f + u(rng)}));
-        std::vector<RhNode> with_empties;
-        for (const RhNode& k : kids) {
-            for (int e = int(rng() % 2); e > 0; --e) with_empties.push_back(RhNode{});
-            with_empties.push_back(k);
-        }
-        if (c % 3 == 0) with_empties.insert(with_empties.begin(), RhNode{});
-        for (const std::vector<RhNode>* set : {&kids, &with_empties}) {
-            w << std::uint32_t(set->size());
-            for (std::size_t k = 0; k < 16; ++k) {
-                const RhNode node = k < set->size() ? (*set)[k] : RhNode{};
-                w << node.sphere << node.cone;
-            }
-        }
-    }
-    const auto out = join.run(w.words, 2 * cases, 129, 8);
-    for (int c = 0; c < cases; ++c) {
-        const RhNode alone = node_at(out, 16 * std::size_t(c)), among = node_at(out, 16 * std::size_t(c) + 8);
-        EXPECT_EQ(std::memcmp(&alone, &among, sizeof(RhNode)), 0) << "case " << c << ": an empty child changed the node";
-        EXPECT_FALSE(alone.empty());
-    }
-    // No child with rays at all: the empty node.
-    Words none;
-    none << std::uint32_t(3);
-    for (std::size_t k = 0; k < 16; ++k) none << RhNode{}.sphere << RhNode{}.cone;
-    EXPECT_TRUE(node_at(join.run(none.words, 1, 129, 8), 0).empty());
-}
-
-// ---------------------------------------------------------------------------------------------------------------
-// The batch traversal on crafted rays against brute force on the CPU (bit-exact twins on llvmpipe).
 
 // `scene` moved and scaled: p * scale + offset (huge and tiny coordinates for the float padding).
 Scene transformed(Scene scene, float scale, glm::vec3 offset) {
@@ -278,7 +101,7 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
             if (i < 1000) {
                 ASSERT_EQ(closest[i].triangle, best.triangle) << what << " ray " << i;
                 if (best.valid()) {
-                    ASSERT_EQ(bits(closest[i].t), bits(best.t)) << what << " ray " << i;
+                    ASSERT_EQ(std::bit_cast<std::uint32_t>(closest[i].t), std::bit_cast<std::uint32_t>(best.t)) << what << " ray " << i;
                 }
                 hits += best.valid();
             } else {
@@ -347,51 +170,11 @@ TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
 // ---------------------------------------------------------------------------------------------------------------
 // The renderer against stage 02.
 
-FrameResult render_rh(const Scene& s, const RenderSettings& settings, HierarchyOptions o) {
-    RayHierarchyRenderer renderer;
-    renderer.hierarchy_options = o;
-    return renderer.render(s, settings);
-}
-
-TEST(RayHierarchyRenderer, CornellEqualsStage02ForEveryBranchingAndALevelLimit) {
-    gpu::test_context();
-    const Scene s = builtin_scene("cornell");
-    const RenderSettings settings = test_frame_settings(s);
-    HybridRenderer stage02;
-    const FrameResult reference = stage02.render(s, settings);
-    for (const HierarchyOptions o :
-         {HierarchyOptions{4, 0, ObjectMode::tree}, HierarchyOptions{8, 0, ObjectMode::tree},
-          HierarchyOptions{16, 0, ObjectMode::tree}, HierarchyOptions{8, 2, ObjectMode::tree},
-          HierarchyOptions{4, 0, ObjectMode::meshes}, HierarchyOptions{8, 2, ObjectMode::meshes},
-          HierarchyOptions{4, 1, ObjectMode::triangles}}) {
-        const FrameResult r = render_rh(s, settings, o);
-        const std::string what = "B=" + std::to_string(o.branching) + " levels " + std::to_string(o.levels) + " " +
-                                 object_mode_name(o.objects);
-        expect_same_frame(r, reference, what);
-        const auto& refl = r.extra["ray_hierarchy"]["kinds"]["reflection"];
-        // At 64x48 neighbouring rays diverge: B = 4 still skips most tests, B = 16 fewer (see README.md).
-        EXPECT_LT(double(refl["percent_of_brute_force"]), o.branching == 4 ? 25.0 : 75.0) << what;
-        if (o.levels > 0) {
-            EXPECT_EQ(refl["levels"].size(), std::size_t(o.levels) + 1) << what;
-        }
-        EXPECT_LT(r.stats.counters.intersection_tests, reference.stats.counters.intersection_tests) << what;
-    }
-}
-
-TEST(RayHierarchyRenderer, LaterFramesOfTheDynamicSceneEqualStage02) {
-    gpu::test_context();
-    for (float time : {0.0f, 0.5f}) {
-        const Scene s = builtin_scene("dynamic", time);
-        const RenderSettings settings = test_frame_settings(s);
-        HybridRenderer stage02;
-        expect_same_frame(render_rh(s, settings, {}), stage02.render(s, settings), "dynamic t=" + std::to_string(time));
-    }
-}
-
 // A built-in scene on the GPU with the wavefront pipeline's frame begun over it: what GpuRayHierarchy::trace needs
 // besides the rays, for the tests that trace batches of their own.
 struct TraceSetup {
-    explicit TraceSetup(const std::string& name) : scene(builtin_scene(name)), wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {
+    explicit TraceSetup(const std::string& name)
+        : scene(builtin_scene(name)), wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {
         gpu_scene.upload(scene);
         RenderSettings settings;
         settings.effects = analyze_effects(scene);
@@ -542,60 +325,6 @@ TEST(GpuRayHierarchy, ABatchOfManyGroupsFindsEveryGroup) {
     EXPECT_EQ(occluded[0], occluded[1]);
     EXPECT_GT(std::count(occluded[0].begin(), occluded[0].end(), 1u), 0) << "some rays are occluded";
     EXPECT_GT(std::count(occluded[0].begin(), occluded[0].end(), 0u), 0) << "some are not";
-}
-
-std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {
-    std::sort(hits.begin(), hits.end(), [](const HitRecord& a, const HitRecord& b) {
-        return std::tie(a.pixel, a.sample, a.path, a.kind_light) < std::tie(b.pixel, b.sample, b.path, b.kind_light);
-    });
-    return hits;
-}
-
-// Pair buffers of 256 entries and a hit list of 2 entries per ray: the traversal runs in many chunks and windows and
-// the hit list fills up and is pruned; the frame is the same, pair for pair, and so are the tests counted.
-TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
-    gpu::test_context();
-    const Scene s = builtin_scene("cornell");
-    const RenderSettings settings = test_frame_settings(s);
-    const FrameResult reference = render_rh(s, settings, {});
-    HierarchyOptions tiny_options;
-    tiny_options.pair_capacity = 256;
-    tiny_options.hit_list_per_ray = 2;
-    const FrameResult tiny = render_rh(s, settings, tiny_options);
-    expect_same_frame(tiny, reference, "256 pairs per buffer");
-    EXPECT_EQ(tiny.stats.counters.intersection_tests, reference.stats.counters.intersection_tests);
-    const auto& t = tiny.extra["ray_hierarchy"];
-    const auto& r = reference.extra["ray_hierarchy"];
-    EXPECT_EQ(t["pair_capacity"], 256);
-    EXPECT_GT(std::uint64_t(t["windows"]), 10 * std::uint64_t(r["windows"]));
-    EXPECT_GT(std::uint64_t(t["hit_list_prunes"]), 0u);
-    for (const char* kind : {"shadow", "reflection", "refraction"})
-        for (const char* key : {"node_tests", "local_tests", "fold_tests"})
-            EXPECT_EQ(t["kinds"][kind][key], r["kinds"][kind][key]) << kind << " " << key;
-}
-
-// $RT_MAX_SSBO_BYTES = 48 KiB: the pipeline's batches, and the stage's buffers with them, shrink (3072 pairs). The
-// frame equals stage 02's under the same limit, hit for hit in the same order, and the unlimited frame's image.
-TEST(RayHierarchyRenderer, ATinyStorageLimitGivesStage02sFrame) {
-    gpu::test_context();
-    const Scene s = builtin_scene("cornell");
-    const RenderSettings settings = test_frame_settings(s);
-    const FrameResult unlimited = render_rh(s, settings, {});
-    ::setenv("RT_MAX_SSBO_BYTES", "49152", 1);
-    const FrameResult tiny = render_rh(s, settings, {});
-    HybridRenderer stage02;
-    const FrameResult tiny02 = stage02.render(s, settings);
-    ::unsetenv("RT_MAX_SSBO_BYTES");
-    expect_same_frame(tiny, tiny02, "04 vs 02 at 48 KiB");
-    EXPECT_EQ(tiny.extra["ray_hierarchy"]["pair_capacity"], 3072);
-    for (std::size_t i = 0; i < tiny.image.pixels.size(); ++i)
-        ASSERT_EQ(tiny.image.pixels[i], unlimited.image.pixels[i]) << "pixel " << i;
-    const auto a = sorted_by_ray(tiny.hits), b = sorted_by_ray(unlimited.hits);
-    ASSERT_EQ(a.size(), b.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        ASSERT_EQ(a[i].triangle, b[i].triangle) << "ray " << i;
-        ASSERT_EQ(bits(a[i].t), bits(b[i].t)) << "ray " << i;
-    }
 }
 
 }  // namespace

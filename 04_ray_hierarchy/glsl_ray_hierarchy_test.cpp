@@ -1,0 +1,180 @@
+// Stage 04's GLSL twins (shaders/rh_common.glsl) against the hierarchy's two properties, on the adversarial ray sets
+// (ray_sets.h): every ray inside all its ancestors, and no rejected (node, triangle) pair that a ray below hits;
+// empty children left out of the union.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "common/gpu/glsl_test_harness.h"
+#include "common/gpu/gpu_test_context.h"
+#include "common/trace/intersect.h"
+#include "ray_hierarchy.h"
+#include "ray_sets.h"
+
+namespace rt {
+namespace {
+
+using gpu::Words;
+
+RhNode node_at(const std::vector<std::uint32_t>& w, std::size_t i) {
+    RhNode n;
+    for (int k = 0; k < 4; ++k) n.sphere[k] = gpu::word_f(w, i + k);
+    for (int k = 0; k < 4; ++k) n.cone[k] = gpu::word_f(w, i + 4 + k);
+    return n;
+}
+
+// rh_union in GLSL: per record, the child count and 16 children (sphere, cone); out the node (sphere, cone).
+gpu::GlslTestHarness& glsl_union() {
+    static gpu::GlslTestHarness join("rh_union", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
+void test_main() {
+    RhNode kids[16];
+    for (uint k = 0u; k < 16u; ++k) kids[k] = RhNode(in_vec4(1u + 8u * k), in_vec4(5u + 8u * k));
+    const RhNode n = rh_union(kids, in_u(0u));
+    out_vec4(0u, n.sphere);
+    out_vec4(4u, n.cone);
+})");
+    return join;
+}
+
+// The hierarchy built by the GLSL functions (leaves, then unions level by level), one harness run per level.
+std::vector<std::vector<RhNode>> glsl_build(const std::vector<RhRay>& rays, int b) {
+    static gpu::GlslTestHarness leaf("rh_leaf", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
+void test_main() {
+    const RhNode n = rh_leaf(in_vec3(0u), in_vec3(3u));
+    out_vec4(0u, n.sphere);
+    out_vec4(4u, n.cone);
+})");
+    gpu::GlslTestHarness& join = glsl_union();
+    Words in;
+    for (const RhRay& r : rays) in << r.origin << r.direction;
+    std::vector<std::vector<RhNode>> levels(1);
+    const auto out = leaf.run(in.words, rays.size(), 6, 8);
+    for (std::size_t i = 0; i < rays.size(); ++i) levels[0].push_back(node_at(out, 8 * i));
+    while (levels.back().size() > 1 || levels.size() == 1) {
+        const std::vector<RhNode>& below = levels.back();
+        const std::size_t parents = (below.size() + b - 1) / b;
+        Words w;
+        for (std::size_t j = 0; j < parents; ++j) {
+            const std::size_t count = std::min<std::size_t>(b, below.size() - j * b);
+            w << std::uint32_t(count);
+            for (std::size_t k = 0; k < 16; ++k) {
+                const RhNode n = k < count ? below[j * b + k] : RhNode{};
+                w << n.sphere << n.cone;
+            }
+        }
+        const auto o = join.run(w.words, parents, 129, 8);
+        std::vector<RhNode> level;
+        for (std::size_t j = 0; j < parents; ++j) level.push_back(node_at(o, 8 * j));
+        levels.push_back(std::move(level));
+    }
+    return levels;
+}
+
+std::vector<glm::vec4> glsl_spheres(const std::vector<glm::vec3>& triangles) {
+    static gpu::GlslTestHarness h("rh_triangle_sphere", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
+void test_main() { out_vec4(0u, rh_triangle_sphere(in_vec3(0u), in_vec3(3u), in_vec3(6u))); })");
+    Words in;
+    for (const glm::vec3& v : triangles) in << v;
+    const auto out = h.run(in.words, triangles.size() / 3, 9, 4);
+    std::vector<glm::vec4> s;
+    for (std::size_t i = 0; i < triangles.size() / 3; ++i)
+        s.emplace_back(gpu::word_f(out, 4 * i), gpu::word_f(out, 4 * i + 1), gpu::word_f(out, 4 * i + 2),
+                       gpu::word_f(out, 4 * i + 3));
+    return s;
+}
+
+TEST(GlslRayHierarchy, EveryRayInsideItsAncestorsAndNoHitRejected) {
+    gpu::test_context();
+    static gpu::GlslTestHarness may_hit("rh_may_hit", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
+void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec4(8u))); })");
+    std::size_t rejected = 0;
+    for (const ray_sets::Case& c : ray_sets::all())
+        for (int b : {4, 8, 16}) {
+            const auto levels = glsl_build(c.rays, b);
+            ASSERT_EQ(levels.back().size(), 1u);
+            for (std::size_t i = 0; i < c.rays.size(); ++i) {
+                if (rh_leaf(c.rays[i].origin, c.rays[i].direction).empty()) {
+                    EXPECT_TRUE(levels[0][i].empty()) << c.name << " ray " << i;
+                    continue;
+                }
+                std::size_t j = i;
+                for (std::size_t l = 1; l < levels.size(); ++l) {
+                    j /= std::size_t(b);
+                    ASSERT_TRUE(rh_contains(levels[l][j], c.rays[i].origin, c.rays[i].direction))
+                        << c.name << " B=" << b << " ray " << i << " level " << l;
+                }
+            }
+            // Every (node, triangle) pair at once through the GLSL test.
+            const std::vector<glm::vec4> spheres = glsl_spheres(c.triangles);
+            Words in;
+            std::vector<std::pair<std::size_t, std::size_t>> pairs;   // (level, node) per record, triangle-major
+            for (std::size_t t = 0; t < spheres.size(); ++t)
+                for (std::size_t l = 1; l < levels.size(); ++l)
+                    for (std::size_t j = 0; j < levels[l].size(); ++j) {
+                        in << levels[l][j].sphere << levels[l][j].cone << spheres[t];
+                        pairs.emplace_back(l, j);
+                    }
+            const auto out = may_hit.run(in.words, pairs.size(), 12, 1);
+            const std::size_t per_triangle = pairs.size() / spheres.size();
+            for (std::size_t p = 0; p < pairs.size(); ++p) {
+                if (out[p] != 0) continue;
+                ++rejected;
+                const auto [l, j] = pairs[p];
+                const std::size_t t = p / per_triangle;
+                std::size_t span = 1;
+                for (std::size_t k = 0; k < l; ++k) span *= std::size_t(b);
+                for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i)
+                    ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], &c.triangles[3 * t]))
+                        << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
+            }
+        }
+    EXPECT_GT(rejected, 1000u);
+}
+
+// Empty children (rays of zero or non-finite direction, the padding of a last node) are left out of a union: a node
+// over some children with empty ones between them is, bit for bit, the node over those children alone.
+TEST(GlslRayHierarchy, EmptyChildrenAreLeftOutOfTheUnion) {
+    gpu::test_context();
+    gpu::GlslTestHarness& join = glsl_union();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    Words w;
+    const int cases = 64;
+    for (int c = 0; c < cases; ++c) {
+        const std::size_t n = 1 + std::size_t(c % 8);
+        std::vector<RhNode> kids;
+        for (std::size_t k = 0; k < n; ++k)
+            kids.push_back(rh_leaf({u(rng) * 5, u(rng) * 5, u(rng) * 5}, {u(rng), u(rng), 0.5f + u(rng)}));
+        std::vector<RhNode> with_empties;
+        for (const RhNode& k : kids) {
+            for (int e = int(rng() % 2); e > 0; --e) with_empties.push_back(RhNode{});
+            with_empties.push_back(k);
+        }
+        if (c % 3 == 0) with_empties.insert(with_empties.begin(), RhNode{});
+        for (const std::vector<RhNode>* set : {&kids, &with_empties}) {
+            w << std::uint32_t(set->size());
+            for (std::size_t k = 0; k < 16; ++k) {
+                const RhNode node = k < set->size() ? (*set)[k] : RhNode{};
+                w << node.sphere << node.cone;
+            }
+        }
+    }
+    const auto out = join.run(w.words, 2 * cases, 129, 8);
+    for (int c = 0; c < cases; ++c) {
+        const RhNode alone = node_at(out, 16 * std::size_t(c)), among = node_at(out, 16 * std::size_t(c) + 8);
+        EXPECT_EQ(std::memcmp(&alone, &among, sizeof(RhNode)), 0) << "case " << c << ": an empty child changed the node";
+        EXPECT_FALSE(alone.empty());
+    }
+    // No child with rays at all: the empty node.
+    Words none;
+    none << std::uint32_t(3);
+    for (std::size_t k = 0; k < 16; ++k) none << RhNode{}.sphere << RhNode{}.cone;
+    EXPECT_TRUE(node_at(join.run(none.words, 1, 129, 8), 0).empty());
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The batch traversal on crafted rays against brute force on the CPU (bit-exact twins on llvmpipe).
+
+}  // namespace
+}  // namespace rt
