@@ -1,4 +1,6 @@
 # The cases of cli_tests.cmake. MODE selects one; EXE is the stage, OUT_DIR a scratch folder.
+# Over 450 lines by choice: one script per case would repeat the render()/fresh_folder() helpers and the argument
+# handling; each MODE is one block below, named after the case it runs.
 file(MAKE_DIRECTORY ${OUT_DIR})
 
 string(REPLACE "|" ";" ARGS "${ARGS}")

@@ -9,6 +9,8 @@
 //    correctly rounded, as on llvmpipe (kExactUlps = 0, hit/miss decisions always equal). GLSL only promises
 //    2.5 ulp for division and sqrt; on a GPU with such arithmetic, set RT_GLSL_TWIN_ULPS to loosen the bound.
 //  - shade_light uses pow(), which GLSL computes as exp2(y * log2(x)): relative error <= kPowRelative (1e-4).
+// Over 450 lines by choice: one job, each GLSL twin against its C++ original through the same harness and input
+// generators (below); a case per twin, named after it.
 #include <gtest/gtest.h>
 
 #include <cmath>

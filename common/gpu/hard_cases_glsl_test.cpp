@@ -1,5 +1,6 @@
-// The numerically hard cases for the GLSL twins (common/shaders/): the same cases as the CPU suite
-// (common/trace/hard_cases_test.cpp), on the same meshes and rays (common/trace/hard_cases.h), asserted on what the
+// The numerically hard cases for the GLSL twins (common/shaders/): the same cases as the CPU suites
+// (common/trace/intersect_watertight_test.cpp, offset_test.cpp, shading_hard_cases_test.cpp and
+// whitted_hard_cases_test.cpp), on the same meshes and rays (common/trace/hard_cases.h), asserted on what the
 // GLSL routines compute in compute shaders (the GLSL test harness; llvmpipe in CI). glsl_twins_test.cpp checks that
 // GLSL and C++ agree on sample inputs; this file checks the properties themselves on the GPU side:
 //
@@ -14,6 +15,8 @@
 //                     internal reflection, eta = 1, lights at the point, equal spot cones, ...).
 //
 // Run build/tests/unit_tests_common_gpu --gtest_filter='GlslHardCases.*' to see the rates they print.
+// Over 450 lines by choice: the five cases share one compute-shader harness per GLSL routine (set up below) and the
+// CPU suites' meshes; split by header they would each rebuild the same harnesses.
 #include <gtest/gtest.h>
 
 #include <cmath>

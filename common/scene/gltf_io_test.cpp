@@ -1,4 +1,6 @@
 // glTF import/export: round trips of every built-in scene, hand-written files (valid and malformed).
+// Over 450 lines by choice: loading and saving are tested together because each round trip is a save then a load,
+// on the same JSON-writing helpers the load cases use; hostile files have their own file (gltf_hostile_test.cpp).
 #include "gltf_io.h"
 
 #include <gtest/gtest.h>

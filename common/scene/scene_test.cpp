@@ -1,4 +1,6 @@
 // The scene model: node transforms, animation sampling, flattening, default camera and light.
+// Over 450 lines by choice: every case builds its asset from the same few helpers below (triangle, single,
+// animated, room_with_camera, expect_near), and the defaults' cases (scene_defaults.cpp) go through flatten() too.
 #include "scene.h"
 
 #include <gtest/gtest.h>
