@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
@@ -101,15 +103,24 @@ void print_summary(const std::string& stage, const std::string& scene, const Ren
     print(line + (out.empty() ? std::string() : "  -> " + out) + "\n");
 }
 
-void write_json_file(const std::string& file, const nlohmann::json& json) { write_whole_file(file, json.dump(2) + "\n"); }
+void write_json_file(const std::string& file, const nlohmann::json& json) {
+    write_whole_file(file, json.dump(2) + "\n");
+}
 
 // The run's own temporary (RunOutputs) receives the bytes; its extension is the target's, which picks the format.
-void save_gltf_into(const SceneAsset& asset, const std::string& file) { write_whole_file(file, gltf_file_bytes(asset, file)); }
+void save_gltf_into(const SceneAsset& asset, const std::string& file) {
+    write_whole_file(file, gltf_file_bytes(asset, file));
+}
 
-int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
-    CLI::App app{stage + ": one stage of the ray-tracing course (see " + stage + "/README.md)", stage};
+// The steps of a run, in order: parse_command_line, load_input, reserve_outputs, export_scene, then per frame
+// frame_scene, frame_settings, the renderer, write_frame; last write_stats. Bad input is an InputError (exit 2)
+// before anything is rendered or written; `files` removes what the run wrote unless it reaches files.keep().
+
+// The options from the command line; a number when the run ends there (--help, --version). `app` outlives the
+// call: a renderer may keep it (a GPU stage names its progress bar after it).
+std::optional<int> parse_command_line(CLI::App& app, const std::string& stage, int argc, char** argv,
+                                      Renderer& renderer, Options& options) {
     app.set_version_flag("--version", std::string("raytracing course ") + stage);
-    Options options;
     add_shared_options(app, options);
     renderer.add_options(app);
     try {
@@ -127,37 +138,48 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     } catch (const std::invalid_argument& e) {
         throw InputError(e.what());
     }
+    return std::nullopt;
+}
 
+// What the run reads: the scene, and what rays leaving it see. --background replaces the scene's colour,
+// --environment (read and checked completely now, before any output is touched) replaces it by a map shared by every
+// frame.
+struct Input {
     SceneAsset asset;
+    std::shared_ptr<const Environment> environment;
+};
+
+Input load_input(const std::string& stage, const Options& options) {
+    Input in;
     try {
-        asset = load_scene(options.scene, options.render.quiet);
+        in.asset = load_scene(options.scene, options.render.quiet);
     } catch (const SceneError& e) {
         throw InputError(e.what());
     }
+    SceneAsset& asset = in.asset;
     if (options.camera >= int(asset.cameras.size()) && options.camera >= 0)
         throw InputError("--camera " + std::to_string(options.camera) + ": the scene has " +
                          std::to_string(asset.cameras.size()) + " camera(s)");
-    // What rays leaving the scene see: --background replaces the scene's colour, --environment (read and checked
-    // completely now, before any output is touched) replaces it by a map shared by every frame.
     if (options.background) {
         asset.background = *options.background;
         asset.has_world = true;
     }
     if (options.ambient) asset.ambient = *options.ambient;
-    std::shared_ptr<const Environment> environment;
     if (!options.environment.empty()) {
-        environment = load_environment(options.environment, options.environment_rotation, options.environment_intensity);
+        in.environment =
+            load_environment(options.environment, options.environment_rotation, options.environment_intensity);
         asset.input_files.push_back(options.environment);   // no output may overwrite it
     }
     if (options.frames > 1 && asset.animations.empty() && !options.render.quiet)
         std::cerr << stage << ": warning: --frames " << options.frames
                   << " on a static scene: every frame is the same image\n";
+    return in;
+}
 
-    // Every output is checked, and its temporary created, before anything is rendered (of --out only the first
-    // frame's: the others share its folder, and a long animation should not hold thousands of empty files); `files`
-    // removes what this run wrote unless it reaches files.keep().
+// Every output is checked, and its temporary created, before anything is rendered (of --out only the first frame's:
+// the others share its folder, and a long animation should not hold thousands of empty files).
+void reserve_outputs(const Options& options, const SceneAsset& asset, RunOutputs& files) {
     const std::vector<OutputPath> outputs = planned_outputs(options);
-    RunOutputs files;
     try {
         check_outputs(outputs, asset.input_files);
         for (const OutputPath& o : outputs)
@@ -167,127 +189,172 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     } catch (const std::filesystem::filesystem_error& e) {
         throw InputError(e.path1().string() + ": " + e.code().message());
     }
-    if (!options.export_path.empty()) {
-        files.write({"--export", options.export_path}, [&](const std::string& file) { save_gltf_into(asset, file); });
-        if (!options.render.quiet) print(stage + ": exported " + options.export_path + "\n");
-        if (options.out.empty() && options.stats.empty()) {
-            files.keep();
-            return 0;
-        }
+}
+
+// --export: the scene as glTF. True when that is all the run was asked for.
+bool export_scene(const std::string& stage, const Options& options, const SceneAsset& asset, RunOutputs& files) {
+    if (options.export_path.empty()) return false;
+    files.write({"--export", options.export_path}, [&](const std::string& file) { save_gltf_into(asset, file); });
+    if (!options.render.quiet) print(stage + ": exported " + options.export_path + "\n");
+    return options.out.empty() && options.stats.empty();
+}
+
+// The scene at the frame's time (past the requested frames, an animation loops), with its world: the environment,
+// or the default world for a file that says nothing of its world (most glTF files; docs/shading.md).
+Scene frame_scene(const std::string& stage, const Options& options, const Input& in, int frame, float duration,
+                  std::size_t& dropped, float& time) {
+    FlattenOptions flatten_options;
+    flatten_options.time = float(frame / options.fps);
+    if (frame >= options.frames && duration > 0.0f) flatten_options.time = std::fmod(flatten_options.time, duration);
+    flatten_options.camera = options.camera;
+    flatten_options.max_triangles = options.max_triangles;
+    flatten_options.aspect = float(options.render.width) / float(options.render.height);
+    time = flatten_options.time;
+    Scene scene;
+    try {
+        scene = flatten(in.asset, flatten_options, &dropped);
+    } catch (const std::out_of_range& e) {
+        throw InputError(std::string("--camera: ") + e.what());
+    }
+    scene.environment = in.environment;
+    if (!in.environment && !in.asset.has_world) {
+        scene.environment = default_world();
+        scene.default_world = true;
+    }
+    if (dropped > 0 && frame == 0 && !options.render.quiet)
+        std::cerr << "warning: dropped " << dropped << " triangle(s) with non-finite vertices\n";
+    if (frame == 0 && !options.render.quiet)
+        if (const std::string problem = working_range_problem(scene.bounds); !problem.empty())
+            std::cerr << stage << ": warning: " << problem << "\n";
+    return scene;
+}
+
+// The frame's settings: the options', the effects the scene calls for, and what the outputs asked for need recorded.
+RenderSettings frame_settings(const Options& options, const Scene& scene, bool shown_only) {
+    RenderSettings settings = options.render;
+    try {
+        settings.effects = resolve_effects(options.effects, scene);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(e.what());
+    }
+    settings.record_hits = !options.dump_hits.empty();
+    settings.record_tests_per_pixel = !options.heatmap.empty();
+    if (options.pixel) {   // its ray tree needs its rays, what each cost, and its heatmap value
+        settings.watch_pixel = std::int64_t(options.pixel->y) * settings.width + options.pixel->x;
+        settings.record_tests_per_pixel = true;
+        if (!settings.record_hits) settings.record_hits_pixel = settings.watch_pixel;
+        settings.record_hits = true;
+    }
+    settings.need_image = !shown_only;   // frames past the requested ones are only shown
+    return settings;
+}
+
+// The frame's outputs: --out, --dump-hits, --heatmap (its scale joins the stats), --pixel's ray tree.
+void write_frame(const std::string& stage, const Options& options, const RenderSettings& settings, int frame,
+                 FrameResult& result, RunOutputs& files, const std::string& path) {
+    if (!path.empty())
+        files.write({"--out", path}, [&](const std::string& file) {
+            write_image_file(file, apply_exposure(result.image, settings.exposure));   // display only
+        });
+    if (!options.dump_hits.empty())
+        files.write({"--dump-hits", frame_path(options.dump_hits, frame, options.frames)},
+                    [&](const std::string& file) { write_hit_file(file, result.hits); });
+    if (!options.heatmap.empty()) {
+        const Heatmap heatmap = make_heatmap(result.tests_per_pixel, settings.width, settings.height,
+                                             options.heatmap_scale, options.heatmap_max);
+        files.write({"--heatmap", frame_path(options.heatmap, frame, options.frames)},
+                    [&](const std::string& file) { write_image_file(file, heatmap.image); });
+        result.extra["heatmap"] = heatmap_json(heatmap);
+    }
+    if (options.pixel) {
+        const std::vector<RayTreeLine> tree =
+            ray_tree(result.hits, result.ray_work, std::uint32_t(settings.watch_pixel));
+        const std::uint64_t heatmap_value = result.tests_per_pixel.at(std::size_t(settings.watch_pixel));
+        if (options.frames > 1) print(stage + ": frame " + std::to_string(frame) + "\n");
+        print(format_ray_tree(tree, options.pixel->x, options.pixel->y, heatmap_value, result.ray_work_steps));
+        result.extra["pixel"] =
+            ray_tree_json(tree, options.pixel->x, options.pixel->y, heatmap_value, result.ray_work_steps);
+    }
+}
+
+// What the frames added up to, for --stats.
+struct RunTotals {
+    FrameStats total;
+    nlohmann::json frames = nlohmann::json::array();   // per frame, with --frames N > 1
+    nlohmann::json last_extra;                         // the last frame's stage stats
+    std::vector<std::string> effect_names;
+    std::size_t dropped = 0;
+};
+
+void write_stats(const std::string& stage, const Options& options, const Input& in, const Scene& scene,
+                 const std::string& renderer_name, const RunTotals& t, RunOutputs& files) {
+    if (options.stats.empty()) return;
+    nlohmann::json extra = {{"triangles", scene.triangle_count()},
+                            {"lights", scene.lights.size()},
+                            {"defaults", {{"camera", scene.default_camera}, {"light", scene.default_light},
+                                          {"headlight", scene.default_headlight}, {"world", scene.default_world}}},
+                            {"ambient", ambient_name(scene.ambient)},
+                            {"dropped_triangles", t.dropped},
+                            {"settings", settings_json(options.render)},
+                            {"threads", resolve_thread_count(options.render.threads)},
+                            {"frames", options.frames}};
+    if (in.environment)
+        extra["environment"] = {{"file", in.environment->file}, {"width", in.environment->width},
+                                {"height", in.environment->height},
+                                {"rotation_degrees", in.environment->rotation_degrees},
+                                {"intensity", in.environment->intensity}};
+    if (options.frames > 1) extra["frame_stats"] = t.frames;
+    if (t.last_extra.is_object()) extra.update(t.last_extra);
+    const nlohmann::json json = make_stats_json(stage, scene_label(options.scene), options.render.width,
+                                                options.render.height, renderer_name, t.effect_names, t.total, extra);
+    files.write({"--stats", options.stats}, [&](const std::string& file) { write_json_file(file, json); });
+}
+
+int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
+    CLI::App app{stage + ": one stage of the ray-tracing course (see " + stage + "/README.md)", stage};
+    Options options;
+    if (const std::optional<int> done = parse_command_line(app, stage, argc, argv, renderer, options)) return *done;
+    const Input in = load_input(stage, options);
+    RunOutputs files;
+    reserve_outputs(options, in.asset, files);
+    if (export_scene(stage, options, in.asset, files)) {
+        files.keep();
+        return 0;
     }
 
     renderer.initialize();
     const std::string label = scene_label(options.scene);
-    FrameStats total;
-    nlohmann::json frames = nlohmann::json::array();
-    nlohmann::json last_extra;
-    std::vector<std::string> effect_names;
+    RunTotals totals;
     Scene scene;
-    std::size_t dropped = 0;
     float duration = 0.0f;
-    for (const Animation& a : asset.animations) duration = std::max(duration, a.duration());
+    for (const Animation& a : in.asset.animations) duration = std::max(duration, a.duration());
+    // Past the requested frames only an interactive window keeps going: nothing more is written, and animated
+    // scenes loop.
     for (int frame = 0; frame < options.frames || renderer.interactive(); ++frame) {
-        // Past the requested frames only an interactive window keeps going: nothing more is written, and animated
-        // scenes loop.
-        const bool extra = frame >= options.frames;
-        FlattenOptions flatten_options;
-        flatten_options.time = float(frame / options.fps);
-        if (extra && duration > 0.0f) flatten_options.time = std::fmod(flatten_options.time, duration);
-        flatten_options.camera = options.camera;
-        flatten_options.max_triangles = options.max_triangles;
-        flatten_options.aspect = float(options.render.width) / float(options.render.height);
-        try {
-            scene = flatten(asset, flatten_options, &dropped);
-        } catch (const std::out_of_range& e) {
-            throw InputError(std::string("--camera: ") + e.what());
-        }
-        scene.environment = environment;
-        // A file that says nothing of its world (most glTF files) sees the default world (docs/shading.md).
-        if (!environment && !asset.has_world) {
-            scene.environment = default_world();
-            scene.default_world = true;
-        }
-        if (dropped > 0 && frame == 0 && !options.render.quiet)
-            std::cerr << "warning: dropped " << dropped << " triangle(s) with non-finite vertices\n";
-        if (frame == 0 && !options.render.quiet)
-            if (const std::string problem = working_range_problem(scene.bounds); !problem.empty())
-                std::cerr << stage << ": warning: " << problem << "\n";
-        RenderSettings settings = options.render;
-        try {
-            settings.effects = resolve_effects(options.effects, scene);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(e.what());
-        }
-        effect_names = settings.effects.names();
-        settings.record_hits = !options.dump_hits.empty();
-        settings.record_tests_per_pixel = !options.heatmap.empty();
-        if (options.pixel) {   // its ray tree needs its rays, what each cost, and its heatmap value
-            settings.watch_pixel = std::int64_t(options.pixel->y) * settings.width + options.pixel->x;
-            settings.record_tests_per_pixel = true;
-            if (!settings.record_hits) settings.record_hits_pixel = settings.watch_pixel;
-            settings.record_hits = true;
-        }
-        settings.need_image = !extra;   // frames past the requested ones are only shown
-
+        const bool shown_only = frame >= options.frames;
+        float time = 0.0f;
+        scene = frame_scene(stage, options, in, frame, duration, totals.dropped, time);
+        const RenderSettings settings = frame_settings(options, scene, shown_only);
+        totals.effect_names = settings.effects.names();
         if (frame == 0)
             if (const std::string why = renderer.unsupported(scene, settings); !why.empty()) throw InputError(why);
         const auto start = std::chrono::steady_clock::now();
         FrameResult result = renderer.render(scene, settings);
-        result.stats.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const auto elapsed = std::chrono::steady_clock::now() - start;
+        result.stats.total_ms = std::chrono::duration<double, std::milli>(elapsed).count();
+        if (shown_only) continue;
 
-        if (extra) continue;
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
-        if (!path.empty())
-            files.write({"--out", path}, [&](const std::string& file) {
-                write_image_file(file, apply_exposure(result.image, settings.exposure));   // display only
-            });
-        if (!options.dump_hits.empty())
-            files.write({"--dump-hits", frame_path(options.dump_hits, frame, options.frames)},
-                        [&](const std::string& file) { write_hit_file(file, result.hits); });
-        if (!options.heatmap.empty()) {
-            const Heatmap heatmap = make_heatmap(result.tests_per_pixel, settings.width, settings.height,
-                                                 options.heatmap_scale, options.heatmap_max);
-            files.write({"--heatmap", frame_path(options.heatmap, frame, options.frames)},
-                        [&](const std::string& file) { write_image_file(file, heatmap.image); });
-            result.extra["heatmap"] = heatmap_json(heatmap);
-        }
-        if (options.pixel) {
-            const std::vector<RayTreeLine> tree =
-                ray_tree(result.hits, result.ray_work, std::uint32_t(settings.watch_pixel));
-            const std::uint64_t heatmap_value = result.tests_per_pixel.at(std::size_t(settings.watch_pixel));
-            if (options.frames > 1) print(stage + ": frame " + std::to_string(frame) + "\n");
-            print(format_ray_tree(tree, options.pixel->x, options.pixel->y, heatmap_value, result.ray_work_steps));
-            result.extra["pixel"] = ray_tree_json(tree, options.pixel->x, options.pixel->y, heatmap_value,
-                                                  result.ray_work_steps);
-        }
+        write_frame(stage, options, settings, frame, result, files, path);
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
-        total.add(result.stats);
+        totals.total.add(result.stats);
         if (options.frames > 1)
-            frames.push_back(make_stats_json(stage, label, settings.width, settings.height, renderer.renderer_name(),
-                                             effect_names, result.stats, {{"time_s", flatten_options.time}}));
-        last_extra = result.extra;
+            totals.frames.push_back(make_stats_json(stage, label, settings.width, settings.height,
+                                                    renderer.renderer_name(), totals.effect_names, result.stats,
+                                                    {{"time_s", time}}));
+        totals.last_extra = result.extra;
     }
-
-    if (!options.stats.empty()) {
-        nlohmann::json extra = {{"triangles", scene.triangle_count()},
-                                {"lights", scene.lights.size()},
-                                {"defaults", {{"camera", scene.default_camera}, {"light", scene.default_light},
-                                              {"headlight", scene.default_headlight}, {"world", scene.default_world}}},
-                                {"ambient", ambient_name(scene.ambient)},
-                                {"dropped_triangles", dropped},
-                                {"settings", settings_json(options.render)},
-                                {"threads", resolve_thread_count(options.render.threads)},
-                                {"frames", options.frames}};
-        if (environment)
-            extra["environment"] = {{"file", environment->file}, {"width", environment->width},
-                                    {"height", environment->height}, {"rotation_degrees", environment->rotation_degrees},
-                                    {"intensity", environment->intensity}};
-        if (options.frames > 1) extra["frame_stats"] = frames;
-        if (last_extra.is_object()) extra.update(last_extra);
-        const nlohmann::json json = make_stats_json(stage, label, options.render.width, options.render.height,
-                                                    renderer.renderer_name(), effect_names, total, extra);
-        files.write({"--stats", options.stats}, [&](const std::string& file) { write_json_file(file, json); });
-    }
+    write_stats(stage, options, in, scene, renderer.renderer_name(), totals, files);
     files.keep();
     return 0;
 }
@@ -317,7 +384,9 @@ std::string one_printable_line(const std::string& message) {
 int run_stage(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     std::signal(SIGPIPE, SIG_IGN);   // a closed stdout is an error on write (see print), not the end of the run
     // An error is one line whatever a file name in it holds: control characters are written as escapes.
-    const auto error = [&](const std::exception& e) { std::cerr << stage << ": error: " << one_printable_line(e.what()) << "\n"; };
+    const auto error = [&](const std::exception& e) {
+        std::cerr << stage << ": error: " << one_printable_line(e.what()) << "\n";
+    };
     try {
         return run(stage, argc, argv, renderer);
     } catch (const InputError& e) {
