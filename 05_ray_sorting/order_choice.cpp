@@ -61,12 +61,10 @@ std::uint64_t u64(const std::uint32_t* lo_hi) { return std::uint64_t(lo_hi[1]) <
 }  // namespace
 
 void GpuOrderChoice::compile(const gpu::ShaderDefines& defines) {
-    std::string key;
-    for (const auto& [name, value] : defines) key += name + "=" + value + ";";
-    if (cost_ && key == key_) return;
+    if (cost_ && defines == defines_) return;   // compiled for these already
     cost_ = gpu::Program::compute("05_ray_sorting/shaders/order_cost.comp", defines);
     choice_ = gpu::Program::compute("05_ray_sorting/shaders/order_choice.comp", defines);
-    key_ = key;
+    defines_ = defines;
     if (!tally_) reset_tally();
 }
 

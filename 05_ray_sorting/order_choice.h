@@ -13,7 +13,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
-#include <string>
 #include <vector>
 
 #include "04_ray_hierarchy/ray_hierarchy.h"
@@ -79,7 +78,7 @@ private:
     void compile(const gpu::ShaderDefines& defines);
     void sum(const gpu::Buffer* order, unsigned slot, std::size_t first, std::size_t count, int branching,
              float diagonal) const;
-    std::string key_;
+    gpu::ShaderDefines defines_;   // the variant cost_ and choice_ were compiled for
     gpu::Program cost_, choice_;
     gpu::Buffer costs_, tally_;
 };
