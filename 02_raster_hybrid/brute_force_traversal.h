@@ -9,8 +9,8 @@
 #include <functional>
 #include <string>
 
-#include "common/gpu/shader.h"
-#include "common/gpu/wavefront.h"
+#include "common/gpu/gl/shader.h"
+#include "common/gpu/pipeline/wavefront.h"
 
 namespace rt::gpu {
 

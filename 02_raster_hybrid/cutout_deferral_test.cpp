@@ -3,7 +3,7 @@
 // "Cut-outs in stage 02"). A pixel that looks through a hole must get the hit behind it, exactly stage 01's.
 #include <gtest/gtest.h>
 
-#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/testing/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "01_naive/brute_force_tracer.h"

@@ -15,9 +15,9 @@
 #include <glm/glm.hpp>
 
 #include "common/scene/scene.h"
-#include "common/gpu/gpu_scene.h"
-#include "common/gpu/shader.h"
-#include "common/gpu/wavefront.h"
+#include "common/gpu/pipeline/gpu_scene.h"
+#include "common/gpu/gl/shader.h"
+#include "common/gpu/pipeline/wavefront.h"
 
 namespace rt::gpu {
 

@@ -1,9 +1,9 @@
-// The stats every GPU stage reports, through the shared base (common/gpu/gpu_stage.h), on stage 02 and on a stage
-// that traces its primary rays as 03 can: rasterized vs traced rays, GPU-timed phases, shader compilation
+// The stats every GPU stage reports, through the shared base (common/gpu/pipeline/gpu_stage.h), on stage 02 and on a
+// stage that traces its primary rays as 03 can: rasterized vs traced rays, GPU-timed phases, shader compilation
 // reported apart (and only when something was compiled).
 #include <gtest/gtest.h>
 
-#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/testing/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "hybrid_renderer.h"

@@ -6,8 +6,8 @@
 
 #include "01_naive/naive_renderer.h"
 #include "02_raster_hybrid/brute_force_traversal.h"
-#include "common/gpu/gpu_stage.h"
-#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/pipeline/gpu_stage.h"
+#include "common/gpu/testing/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "hybrid_renderer.h"

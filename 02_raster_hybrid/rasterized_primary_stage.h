@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "common/gpu/gpu_stage.h"
+#include "common/gpu/pipeline/gpu_stage.h"
 
 namespace rt {
 

@@ -10,8 +10,8 @@
 #include <cstdio>
 
 #include "01_naive/brute_force_tracer.h"
-#include "common/gpu/gpu_scene.h"
-#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/pipeline/gpu_scene.h"
+#include "common/gpu/testing/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "02_raster_hybrid/gbuffer.h"

@@ -3,9 +3,9 @@
 #include <bit>
 #include <string>
 
-#include "common/gpu/bindings.h"
-#include "common/gpu/gl_check.h"
-#include "common/gpu/storage_limit.h"
+#include "common/gpu/gl/bindings.h"
+#include "common/gpu/gl/gl_check.h"
+#include "common/gpu/gl/storage_limit.h"
 #include "common/scene/gltf_io.h"
 
 namespace rt {

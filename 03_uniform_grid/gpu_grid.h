@@ -21,11 +21,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/gpu/buffer.h"
-#include "common/gpu/gpu_scene.h"
-#include "common/gpu/radix_sort.h"
-#include "common/gpu/scan.h"
-#include "common/gpu/shader.h"
+#include "common/gpu/gl/buffer.h"
+#include "common/gpu/pipeline/gpu_scene.h"
+#include "common/gpu/primitives/radix_sort.h"
+#include "common/gpu/primitives/scan.h"
+#include "common/gpu/gl/shader.h"
 #include "uniform_grid.h"
 
 namespace rt {

@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/app/options.h"
-#include "common/gpu/storage_limit.h"
+#include "common/gpu/gl/storage_limit.h"
 
 namespace rt {
 

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <random>
 
-#include "common/gpu/glsl_test_harness.h"
-#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/testing/glsl_test_harness.h"
+#include "common/gpu/testing/gpu_test_context.h"
 #include "common/trace/intersect.h"
 #include "ray_hierarchy.h"
 #include "ray_sets.h"

@@ -10,9 +10,9 @@
 //   traverse  candidate pairs (ray side, object side) (rh_pairs.glsl): the top ray level against every top item
 //             (triangles, mesh objects or the tree's root), implicitly; per chunk of pairs: rh_cull.comp (the
 //             cone+sphere test; each survivor splits one side and counts its children), the shared exclusive scan
-//             (common/gpu/scan.h), rh_expand.comp writing the children pairs, window by window, each window traced
-//             on before the next (depth first over steps). The scan runs over the sums of work groups of 64 pairs;
-//             rh_expand.comp adds the offsets inside a group.
+//             (common/gpu/primitives/scan.h), rh_expand.comp writing the children pairs, window by window, each
+//             window traced on before the next (depth first over steps). The scan runs over the sums of work groups
+//             of 64 pairs; rh_expand.comp adds the offsets inside a group.
 //   local     rh_leaf.comp, on every (ray, triangle) pair a step leaves: the ray against the triangle's sphere, then
 //             the exact ray/triangle test; for closest hits then rh_fold.comp (rh_closest.glsl: brute force's hit).
 //
@@ -26,12 +26,12 @@
 #include <string>
 #include <vector>
 
-#include "common/gpu/buffer.h"
-#include "common/gpu/gpu_scene.h"
-#include "common/gpu/radix_sort.h"
-#include "common/gpu/scan.h"
-#include "common/gpu/shader.h"
-#include "common/gpu/wavefront.h"
+#include "common/gpu/gl/buffer.h"
+#include "common/gpu/pipeline/gpu_scene.h"
+#include "common/gpu/primitives/radix_sort.h"
+#include "common/gpu/primitives/scan.h"
+#include "common/gpu/gl/shader.h"
+#include "common/gpu/pipeline/wavefront.h"
 #include "common/scene/scene.h"
 #include "object_tree.h"
 

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/gpu/gl_check.h"
+#include "common/gpu/gl/gl_check.h"
 
 namespace rt::rh_detail {
 

@@ -7,8 +7,8 @@
 #include <bit>
 #include <random>
 
-#include "common/gpu/gpu_scene.h"
-#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/pipeline/gpu_scene.h"
+#include "common/gpu/testing/gpu_test_context.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/intersect.h"

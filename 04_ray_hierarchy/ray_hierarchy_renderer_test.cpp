@@ -9,8 +9,8 @@
 #include <tuple>
 
 #include "02_raster_hybrid/hybrid_renderer.h"
-#include "common/gpu/gpu_test_context.h"
-#include "common/gpu/same_frame_expectations.h"
+#include "common/gpu/testing/gpu_test_context.h"
+#include "common/gpu/testing/same_frame_expectations.h"
 #include "common/scene/builtin_scenes.h"
 #include "ray_hierarchy_renderer.h"
 #include "tests/stage_test_fixture.h"

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/gpu/bindings.h"
-#include "common/gpu/wavefront.h"
+#include "common/gpu/gl/bindings.h"
+#include "common/gpu/pipeline/wavefront.h"
 
 namespace rt {
 

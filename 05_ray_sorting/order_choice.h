@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "04_ray_hierarchy/ray_hierarchy.h"
-#include "common/gpu/buffer.h"
-#include "common/gpu/shader.h"
+#include "common/gpu/gl/buffer.h"
+#include "common/gpu/gl/shader.h"
 
 namespace rt {
 

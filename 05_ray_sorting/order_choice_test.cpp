@@ -7,8 +7,8 @@
 #include <numeric>
 #include <random>
 
-#include "common/gpu/gpu_test_context.h"
-#include "common/gpu/wavefront.h"
+#include "common/gpu/testing/gpu_test_context.h"
+#include "common/gpu/pipeline/wavefront.h"
 #include "order_choice.h"
 
 namespace rt {

@@ -53,7 +53,7 @@
 
 #include <glm/glm.hpp>
 
-#include "common/gpu/wavefront.h"
+#include "common/gpu/pipeline/wavefront.h"
 
 namespace rt {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "common/gpu/bindings.h"
+#include "common/gpu/gl/bindings.h"
 
 namespace rt {
 

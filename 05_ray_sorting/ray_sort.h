@@ -20,10 +20,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "common/gpu/buffer.h"
-#include "common/gpu/radix_sort.h"
-#include "common/gpu/scan.h"
-#include "common/gpu/shader.h"
+#include "common/gpu/gl/buffer.h"
+#include "common/gpu/primitives/radix_sort.h"
+#include "common/gpu/primitives/scan.h"
+#include "common/gpu/gl/shader.h"
 #include "ray_keys.h"
 
 namespace rt {

@@ -7,7 +7,7 @@
 #include <numeric>
 #include <random>
 
-#include "common/gpu/gpu_test_context.h"
+#include "common/gpu/testing/gpu_test_context.h"
 #include "ray_sort.h"
 
 namespace rt {

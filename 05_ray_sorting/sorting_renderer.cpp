@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "common/app/options.h"
-#include "common/gpu/bindings.h"
+#include "common/gpu/gl/bindings.h"
 
 namespace rt {
 

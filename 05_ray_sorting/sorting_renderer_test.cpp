@@ -3,8 +3,8 @@
 
 #include <cstdlib>
 
-#include "common/gpu/gpu_test_context.h"
-#include "common/gpu/same_frame_expectations.h"
+#include "common/gpu/testing/gpu_test_context.h"
+#include "common/gpu/testing/same_frame_expectations.h"
 #include "common/scene/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "sorting_renderer.h"

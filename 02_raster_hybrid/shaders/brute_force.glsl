@@ -1,10 +1,10 @@
 // The reference traversal (stage 02's, and the one every faster traversal is checked against): no acceleration
 // structure, as in stage 01 (brute_force_tracer.h). Every ray is tested against every triangle. The wavefront
-// pipeline (common/gpu/wavefront.h) calls these from its trace pass (closest hit) and its shadow pass (any hit);
-// stages 03-05 plug in a faster traversal instead. Shader path: "02_raster_hybrid/shaders/brute_force.glsl".
+// pipeline (common/gpu/pipeline/wavefront.h) calls these from its trace pass (closest hit) and its shadow pass (any
+// hit); stages 03-05 plug in a faster traversal instead. Shader path: "02_raster_hybrid/shaders/brute_force.glsl".
 #include "common/shaders/wavefront/wavefront.glsl"
-#include "scene.glsl"
-#include "opacity.glsl"
+#include "common/shaders/trace/scene.glsl"
+#include "common/shaders/trace/opacity.glsl"
 
 bool intersect_scene_triangle(Ray ray, WatertightRay w, uint i, out float t, out float u, out float v) {
     vec3 a, b, c;

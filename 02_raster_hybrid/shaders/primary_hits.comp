@@ -17,8 +17,8 @@
 // the sliver's hit, as close to it as shading needs. These tests are counted (wf_count_tests), like a traversal's;
 // the rays stay "rasterized" in the stats (docs/gpu.md).
 #include "common/shaders/wavefront/wavefront.glsl"
-#include "scene.glsl"
-#include "environment.glsl"
+#include "common/shaders/trace/scene.glsl"
+#include "common/shaders/trace/environment.glsl"
 
 layout(local_size_x = 64) in;
 

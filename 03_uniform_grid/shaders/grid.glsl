@@ -1,10 +1,10 @@
 // Stage 03's traversal (Amanatides & Woo 1987, "A Fast Voxel Traversal Algorithm for Ray Tracing"): the ray walks
 // the grid cell by cell, in order along the ray, and is tested only against the triangles listed in the cells it
-// passes through. The wavefront pipeline (common/gpu/wavefront.h) calls trace_closest from its trace pass and
+// passes through. The wavefront pipeline (common/gpu/pipeline/wavefront.h) calls trace_closest from its trace pass and
 // trace_any from its shadow pass. Shader path: "03_uniform_grid/shaders/grid.glsl". C++ twin: walk_grid in uniform_grid.cpp.
 #include "common/shaders/wavefront/wavefront.glsl"
 #include "grid_walk.glsl"
-#include "opacity.glsl"
+#include "common/shaders/trace/opacity.glsl"
 
 
 #if defined(GRID_STATS) && defined(COUNT_TESTS)   // compiled out without test counting (timing runs)

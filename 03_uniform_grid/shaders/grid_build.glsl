@@ -13,7 +13,7 @@
 // A triangle's chunks are consecutive and each walks its cells in order, so the pairs come out exactly as one thread
 // per triangle would write them: by triangle, then cell order within it.
 #include "grid_common.glsl"
-#include "compute.glsl"
+#include "common/shaders/compute.glsl"
 
 layout(local_size_x = 64) in;
 

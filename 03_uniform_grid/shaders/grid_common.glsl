@@ -9,7 +9,7 @@
 //               2 * grid_cell_count: triangle ids, cell after cell, increasing within a cell (the sorted pairs)
 // The build passes (grid_build.glsl) use bindings 27..30: per-chunk counts/offsets, per-triangle counts/offsets, the
 // pair keys (cells) and pair values (triangles).
-#include "bindings.glsl"
+#include "common/shaders/bindings.glsl"
 
 #define GRID_BINDING 24
 #define GRID_BINDING_CHUNKS 27

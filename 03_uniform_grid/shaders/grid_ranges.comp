@@ -2,7 +2,7 @@
 // Build pass 3: after the sort, each cell's pairs are one run of equal keys. The first pair of a run writes the
 // cell's begin, the last its end; cells no pair names keep [0, 0) (cleared before).
 #include "grid_common.glsl"
-#include "compute.glsl"
+#include "common/shaders/compute.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -7,7 +7,7 @@
 //             ...
 //             if (!grid_walk_next(w)) break;
 //         }
-#include "camera.glsl"
+#include "common/shaders/trace/camera.glsl"
 #include "grid_common.glsl"
 
 // The walk's state: the current cell, the t-range [t, t1] the ray spends in it, and what is left of the grid box.

@@ -2,7 +2,8 @@
 // The object tree, rebuilt every frame (object_tree.h; C++ twin: build_object_tree in object_tree.cpp), one mode per
 // dispatch after rh_spheres.comp has written the triangles' spheres:
 //   0 codes     per triangle: the 30-bit Morton code of its sphere's centre (cubic cells over the scene box) and
-//               its id, for the shared radix sort (common/gpu/radix_sort.h), which sorts ids by code, stably;
+//               its id, for the shared radix sort (common/gpu/primitives/radix_sort.h), which sorts ids by code,
+//               stably;
 //   1 clusters  per node of level 1: the sphere of triangles rh_order[first, first + kClusterSize);
 //   2 level     per node of an upper level: the sphere of nodes [first, first + kObjectBranching) of the level below.
 #include "rh_common.glsl"

@@ -8,9 +8,9 @@
 // which only rh_leaf.comp sees.
 //
 // Writes for each pair how many pairs it expands to (0 when rejected), and each work group of 64 pairs its total:
-// the shared scan (common/gpu/scan.h) runs over these totals only, 64 times fewer values than pairs. A pair's place
-// inside its group comes from the shared-memory atomic that sums the group (in whatever order the threads run: the
-// order of pairs changes nothing the traversal computes, the hits, the occlusion or the counts).
+// the shared scan (common/gpu/primitives/scan.h) runs over these totals only, 64 times fewer values than pairs. A
+// pair's place inside its group comes from the shared-memory atomic that sums the group (in whatever order the threads
+// run: the order of pairs changes nothing the traversal computes, the hits, the occlusion or the counts).
 // rh_counts[i] packs the count (bits 0-12, at most 4096), that place (bits 13-30, at most 63 x 4096) and the side
 // split (bit 31: the object side).
 #include "rh_common.glsl"

@@ -3,13 +3,13 @@
 // per-ray test first, the ray against the triangle's bounding sphere (rh_ray_may_hit; the sphere is computed from
 // the vertices here, as rh_spheres.comp does, so no buffer more is bound; --sphere-test off skips it, as the papers
 // do), and only then the exact ray/triangle test
-// (common/shaders/intersect.glsl, as brute force). Shadow rays (RH_SHADOW): any hit blocks the light. Closest hits:
-// step 1 of rh_closest.glsl. Each work group adds its exact tests to rh_info once (the CPU adds the batch's to the
-// pipeline's test counter, rh_fold.comp mode 6); only the heatmap needs one atomic per test, on the ray's pixel.
+// (common/shaders/trace/intersect.glsl, as brute force). Shadow rays (RH_SHADOW): any hit blocks the light. Closest
+// hits: step 1 of rh_closest.glsl. Each work group adds its exact tests to rh_info once (the CPU adds the batch's to
+// the pipeline's test counter, rh_fold.comp mode 6); only the heatmap needs one atomic per test, on the ray's pixel.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 #include "rh_pairs.glsl"
-#include "opacity.glsl"
+#include "common/shaders/trace/opacity.glsl"
 #include "rh_info.glsl"
 #ifndef RH_SHADOW
 #include "rh_closest.glsl"

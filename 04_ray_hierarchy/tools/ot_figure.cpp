@@ -12,8 +12,8 @@
 #include <set>
 #include <vector>
 
-#include "../object_tree.h"
-#include "../ray_hierarchy.h"
+#include "04_ray_hierarchy/object_tree.h"
+#include "04_ray_hierarchy/ray_hierarchy.h"
 
 using namespace rt;
 

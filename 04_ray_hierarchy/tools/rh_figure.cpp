@@ -9,7 +9,7 @@
 #include <fstream>
 #include <vector>
 
-#include "../ray_hierarchy.h"
+#include "04_ray_hierarchy/ray_hierarchy.h"
 
 using namespace rt;
 

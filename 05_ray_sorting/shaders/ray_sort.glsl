@@ -5,8 +5,8 @@
 // sorting disturbs neither the scene (0..7) nor the wavefront pipeline (16..23). The gather and scatter passes move
 // the pipeline's own rays and results, so they bind as a stage does: from the traversal's first point (24; stage 04
 // rebinds its buffers there before each of its passes).
-#include "bindings.glsl"
-#include "compute.glsl"
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/compute.glsl"
 
 #define RS_BINDING_0 RT_BINDING_SCAN_IN
 #define RS_BINDING_1 RT_BINDING_SCAN_OUT

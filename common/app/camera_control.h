@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "../scene/scene.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

@@ -18,10 +18,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "../scene/whole_file.h"
-#include "../scene/builtin_scenes.h"
-#include "../scene/gltf_io.h"
-#include "../trace/environment.h"
+#include "common/scene/whole_file.h"
+#include "common/scene/builtin_scenes.h"
+#include "common/scene/gltf_io.h"
+#include "common/trace/environment.h"
 #include "atomic_file.h"
 #include "environment_file.h"
 #include "heatmap.h"

@@ -9,8 +9,8 @@
 
 #include <sys/stat.h>
 
-#include "../scene/scene.h"
-#include "../trace/shading.h"
+#include "common/scene/scene.h"
+#include "common/trace/shading.h"
 #include "input_error.h"
 
 #ifndef RT_PORTABLE

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "../scene/environment_map.h"
+#include "common/scene/environment_map.h"
 
 namespace rt {
 

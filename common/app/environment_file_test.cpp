@@ -10,7 +10,7 @@
 #include <OpenImageIO/imageio.h>
 #include <sys/stat.h>
 
-#include "../scene/scene.h"
+#include "common/scene/scene.h"
 #include "environment_file.h"
 #include "image.h"
 #include "input_error.h"

@@ -11,7 +11,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #endif
 
-#include "../trace/shading.h"
+#include "common/trace/shading.h"
 
 namespace rt {
 

@@ -6,7 +6,7 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "../scene/whole_file.h"
+#include "common/scene/whole_file.h"
 
 namespace rt {
 

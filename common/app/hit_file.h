@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "../trace/hit_record.h"
+#include "common/trace/hit_record.h"
 
 namespace rt {
 

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "../scene/whole_file.h"
-#include "../trace/shading.h"
+#include "common/scene/whole_file.h"
+#include "common/trace/shading.h"
 #include "atomic_file.h"
 
 #ifdef RT_PORTABLE

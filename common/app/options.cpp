@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "../scene/builtin_scenes.h"
-#include "../scene/effects.h"
+#include "common/scene/builtin_scenes.h"
+#include "common/scene/effects.h"
 #include "environment_file.h"
 #include "image.h"
 

@@ -4,7 +4,7 @@
 
 #include <functional>
 
-#include "../trace/ray.h"
+#include "common/trace/ray.h"
 #include "progress.h"
 
 namespace rt {

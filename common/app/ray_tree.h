@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../trace/hit_record.h"
+#include "common/trace/hit_record.h"
 
 namespace rt {
 

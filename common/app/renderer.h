@@ -7,13 +7,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../scene/effects.h"
-#include "../scene/scene.h"
-#include "../trace/intersect.h"
-#include "../trace/offset.h"
-#include "../trace/shading.h"
+#include "common/scene/effects.h"
+#include "common/scene/scene.h"
+#include "common/trace/intersect.h"
+#include "common/trace/offset.h"
+#include "common/trace/shading.h"
 #include "exposure.h"
-#include "../trace/hit_record.h"
+#include "common/trace/hit_record.h"
 #include "image.h"
 #include "stats.h"
 

@@ -3,7 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "../scene/whole_file.h"
+#include "common/scene/whole_file.h"
 #include "atomic_file.h"
 
 namespace rt {

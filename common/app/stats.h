@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../trace/ray.h"
+#include "common/trace/ray.h"
 
 namespace rt {
 

@@ -1,5 +1,5 @@
-// Binding points shared by C++ and GLSL: the same numbers as common/gpu/bindings.h (common/gpu/bindings_test.cpp checks
-// them, and the struct layouts, through GL program interface queries).
+// Binding points shared by C++ and GLSL: the same numbers as common/gpu/gl/bindings.h (common/gpu/gl/bindings_test.cpp
+// checks them, and the struct layouts, through GL program interface queries).
 //   SSBO 0..7 scene + counters, 8..15 common primitives, 16.. stages (RT_BINDING_STAGE_FIRST + i).
 //   UBO 0 scene block, 1.. stages. Texture unit 0 scene textures, 1.. stages.
 

@@ -1,5 +1,5 @@
 // Absorption inside transmitting volumes (KHR_materials_volume; docs/shading.md, "Absorption"). The GLSL twin is
-// common/shaders/absorption.glsl.
+// common/shaders/trace/absorption.glsl.
 //
 // Beer-Lambert: light that travels a distance t through a medium with absorption coefficient sigma_a keeps the
 // fraction exp(-sigma_a t) per channel. glTF gives the medium as the colour c that white light takes after the
@@ -10,8 +10,8 @@
 #include <cmath>
 #include <limits>
 
-#include "../scene/effects.h"
-#include "../scene/scene.h"
+#include "common/scene/effects.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

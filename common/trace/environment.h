@@ -1,14 +1,15 @@
 // What a ray that leaves the scene brings back (docs/shading.md, "The environment"): the environment map's radiance
-// in its direction when the scene has one, else the background colour. GLSL twin: common/shaders/environment.glsl,
-// written operation for operation alike (environment_glsl_test.cpp checks they agree to the bit).
+// in its direction when the scene has one, else the background colour. GLSL twin:
+// common/shaders/trace/environment.glsl, written operation for operation alike (environment_glsl_test.cpp checks they
+// agree to the bit).
 #pragma once
 
 #include <memory>
 
 #include <glm/glm.hpp>
 
-#include "../scene/environment_map.h"
-#include "../scene/scene.h"
+#include "common/scene/environment_map.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

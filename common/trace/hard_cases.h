@@ -1,7 +1,7 @@
 // Test support for the hard-case suites: the meshes and rays that the CPU suites (beside the header each covers:
 // common/trace/intersect_watertight_test.cpp, offset_test.cpp, shading_hard_cases_test.cpp,
-// whitted_hard_cases_test.cpp) and their GLSL twin (common/gpu/hard_cases_glsl_test.cpp) share, so both run the same
-// cases:
+// whitted_hard_cases_test.cpp) and their GLSL twin (common/gpu/glsl_twins/hard_cases_glsl_test.cpp) share, so both run
+// the same cases:
 //   closed meshes       closed_sphere(), closed_cube() and their topology (shared vertices and edges by position)
 //   watertight rays     rays_at_shared_vertices_and_edges(): aimed exactly at the shared vertices and edges
 //   placement           sphere_at() / thin_slab_at(): a scene at coordinates OFFSET and of size SCALE, and where

@@ -7,7 +7,8 @@
 //              so it runs along +Z; the 2D edge functions are then evaluated identically for both triangles sharing an
 //              edge (and redone in double when one is exactly zero), so no ray slips between them.
 //
-// The GLSL twins are in common/shaders/intersect.glsl; tests/unit keep the two in agreement.
+// The GLSL twins are in common/shaders/trace/intersect.glsl; common/gpu/glsl_twins/glsl_twins_test.cpp keeps the two in
+// agreement.
 #pragma once
 
 #include <algorithm>

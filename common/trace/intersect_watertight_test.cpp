@@ -1,8 +1,8 @@
 // Watertightness of the ray/triangle tests (intersect.h): rays aimed exactly at shared vertices and edges of closed
 // meshes never slip through with the watertight test (Woop, Benthin & Wald 2013); Moller-Trumbore's misses there are
 // counted and printed; away from edges the two agree. The rays come from hard_cases.h, shared with the GLSL suite
-// (common/gpu/hard_cases_glsl_test.cpp). Run build/tests/unit_tests_common_trace --gtest_filter='Watertight*' to see
-// the rates.
+// (common/gpu/glsl_twins/hard_cases_glsl_test.cpp). Run build/tests/unit_tests_common_trace
+// --gtest_filter='Watertight*' to see the rates.
 #include <gtest/gtest.h>
 
 #include <cmath>

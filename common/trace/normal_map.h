@@ -1,11 +1,11 @@
 // Normal maps (docs/shading.md, "Normal maps"): a tangent-space normal texture bends the shading normal, never the
 // geometric normal (ray offsets and the below-the-surface test keep using that). The GLSL twin is
-// common/shaders/normal_map.glsl; the tangents come from the file or from common/scene/tangents.h.
+// common/shaders/trace/normal_map.glsl; the tangents come from the file or from common/scene/tangents.h.
 #pragma once
 
 #include <cstddef>
 
-#include "../scene/scene.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

@@ -16,7 +16,8 @@
 //           Its limit: a triangle much larger than the coordinate it is offset in (vertices at +-1e4 around a point
 //           at 0.1) has more interpolation error than ulps of P; the near-origin rule covers coordinates below 1/32.
 //
-// In both, n is the geometric normal turned to the side the new ray leaves on. GLSL twin: common/shaders/offset.glsl.
+// In both, n is the geometric normal turned to the side the new ray leaves on. GLSL twin:
+// common/shaders/trace/offset.glsl.
 #pragma once
 
 #include <bit>

@@ -2,8 +2,8 @@
 // a surface's opacity is below its material's cutoff, a ray passes through it as if the triangle were not there. A
 // BLEND surface read as coverage (Effects::blend) is there wherever its opacity is above 0, for all but shadow rays.
 // This is the one opacity test every traversal applies where it accepts a candidate hit: stage 01's brute force
-// (brute_force_tracer.h), stage 03's CPU grid (uniform_grid.cpp); common/shaders/opacity.glsl is its GLSL twin, used
-// by every GPU traversal. Only scenes whose triangles use a MASK or BLEND material run it (Effects::cutouts).
+// (brute_force_tracer.h), stage 03's CPU grid (uniform_grid.cpp); common/shaders/trace/opacity.glsl is its GLSL twin,
+// used by every GPU traversal. Only scenes whose triangles use a MASK or BLEND material run it (Effects::cutouts).
 //
 // Why every traversal stays exact: the test only turns some hits of the ray/triangle test into misses, and whether
 // a hit at barycentrics (u, v) is opaque depends on the triangle and (u, v) alone, never on tmax or on the other
@@ -14,7 +14,7 @@
 
 #include <cstddef>
 
-#include "../scene/scene.h"
+#include "common/scene/scene.h"
 #include "shading.h"
 #include "texture_transform.h"
 

@@ -1,11 +1,11 @@
-// The shading model every stage implements (docs/shading.md is the contract; common/shaders/shading.glsl is the
-// GLSL twin, kept equal by common/gpu/glsl_twins_test.cpp). Everything here is linear RGB.
+// The shading model every stage implements (docs/shading.md is the contract; common/shaders/trace/shading.glsl is the
+// GLSL twin, kept equal by common/gpu/glsl_twins/glsl_twins_test.cpp). Everything here is linear RGB.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
-#include "../scene/scene.h"
+#include "common/scene/scene.h"
 #include "ray.h"
 
 namespace rt {

@@ -1,11 +1,11 @@
 // KHR_texture_transform (docs/shading.md, "Texture transform"): uv' = offset + R S uv, glTF's matrix product
 // T * R * S with R = [cos sin; -sin cos] and S = diag(scale). The GLSL twin is rt_transform_uv in
-// common/shaders/normal_map.glsl, reading the matrix this file computes (GpuMaterial).
+// common/shaders/trace/normal_map.glsl, reading the matrix this file computes (GpuMaterial).
 #pragma once
 
 #include <cmath>
 
-#include "../scene/scene.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

@@ -7,7 +7,8 @@
 //       bool occluded(const Ray<T>& ray, RayCounters& counters) const;              // any hit with t < ray.tmax
 //   };
 //
-// docs/shading.md states the model; the GPU stages implement the same sum in passes (common/shaders/shading.glsl).
+// docs/shading.md states the model; the GPU stages implement the same sum in passes
+// (common/shaders/trace/shading.glsl).
 #pragma once
 
 #include <algorithm>
@@ -15,8 +16,8 @@
 #include <vector>
 
 #include "hit_record.h"
-#include "../scene/effects.h"
-#include "../scene/scene.h"
+#include "common/scene/effects.h"
+#include "common/scene/scene.h"
 #include "absorption.h"
 #include "environment.h"
 #include "intersect.h"

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "../scene/effects.h"
+#include "common/scene/effects.h"
 #include "01_naive/brute_force_tracer.h"
 #include "whitted.h"
 

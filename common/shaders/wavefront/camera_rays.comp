@@ -3,7 +3,7 @@
 // wf_sample_offset inside it, exactly as rt::camera_ray (camera.glsl is its twin). Slot s of the batch is the pixel
 // wf_tile_pixel(wf_tile_first * 64 + s) (8x8 tiles, Morton order inside), so compaction gives the queue that order.
 #include "wavefront.glsl"
-#include "scene.glsl"
+#include "common/shaders/trace/scene.glsl"
 
 layout(local_size_x = 64) in;
 

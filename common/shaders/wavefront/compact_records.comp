@@ -2,8 +2,8 @@
 // Queue compaction, last step (flags -> exclusive scan -> this): the used slots of a pass' output (flags[i] != 0)
 // move to out[offsets[i]], keeping their order. Records are `stride` uints long (rays 16, hits 20); one thread per
 // uint of the output slots, so the copy is coalesced.
-#include "bindings.glsl"
-#include "compute.glsl"
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/compute.glsl"
 
 layout(local_size_x = 256) in;
 

@@ -15,8 +15,9 @@
 // run (wf_shade_local = 1) adds the emission and ambient terms and spawns reflection, refraction and transparency
 // rays.
 #include "wavefront.glsl"
-#include "whitted.glsl"
-#include "opacity.glsl"   // surface_opacity, for BLEND coverage (compiled only with ENABLE_CUTOUTS)
+#include "common/shaders/trace/whitted.glsl"
+// surface_opacity, for BLEND coverage (compiled only with ENABLE_CUTOUTS)
+#include "common/shaders/trace/opacity.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -3,8 +3,8 @@
 // order of their rays; a ray that leaves the scene brings the background or the environment in its direction
 // (environment.glsl), weighted by its path weight.
 #include "wavefront.glsl"
-#include "scene.glsl"
-#include "environment.glsl"
+#include "common/shaders/trace/scene.glsl"
+#include "common/shaders/trace/environment.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -1,5 +1,5 @@
-// The wavefront Whitted pipeline's data on the GPU (rt::gpu::Wavefront, common/gpu/wavefront.h): ray and hit queues,
-// the per-pixel radiance accumulator, the settings, and the hook through which a traversal counts its tests.
+// The wavefront Whitted pipeline's data on the GPU (rt::gpu::Wavefront, common/gpu/pipeline/wavefront.h): ray and hit
+// queues, the per-pixel radiance accumulator, the settings, and the hook through which a traversal counts its tests.
 //
 // Instead of one thread following a whole ray tree (stage 01's recursion), each pass handles one kind of work for
 // every ray that needs it (Laine, Karras & Aila 2013, "Megakernels Considered Harmful"):
@@ -10,10 +10,10 @@
 // Passes never append: a pass writes its outputs to fixed slots (a slot per input and output kind), flags the used
 // ones, and compact_records.comp packs them with a prefix sum, so every queue has the same order on every run
 // (docs/gpu.md, "Queue order").
-#include "bindings.glsl"
-#include "counters.glsl"
-#include "compute.glsl"
-#include "intersect.glsl"
+#include "common/shaders/bindings.glsl"
+#include "common/shaders/counters.glsl"
+#include "common/shaders/compute.glsl"
+#include "common/shaders/trace/intersect.glsl"
 
 // SSBO bindings of the pipeline; a stage's traversal data start at WF_BINDING_TRAVERSAL_FIRST
 // (rt::gpu::kWavefrontBindingTraversalFirst). wavefront.cpp has the same numbers.

@@ -1,0 +1,179 @@
+#include "gpu_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "common/scene/gltf_io.h"
+#include "common/trace/absorption.h"
+#include "common/trace/opacity.h"
+#include "common/trace/shading.h"
+#include "common/trace/texture_transform.h"
+#include "common/gpu/gl/bindings.h"
+#include "common/gpu/gl/storage_limit.h"
+
+namespace rt::gpu {
+
+GpuCamera to_gpu(const Camera& c) {
+    GpuCamera g{};
+    g.position = c.position;
+    g.projection = std::int32_t(c.projection);
+    g.right = c.right;
+    g.tan_half_fov = std::tan(c.yfov * 0.5f);   // = std::tan(T(cam.yfov) * T(0.5)) in rt::camera_ray<float>
+    g.up = c.up;
+    g.aspect = c.aspect;
+    g.forward = c.forward;
+    g.xmag = c.xmag;
+    g.ymag = c.ymag;
+    g.znear = c.znear;
+    g.zfar = c.zfar;
+    g.yfov = c.yfov;
+    return g;
+}
+
+GpuMaterial to_gpu(const Material& m) {
+    GpuMaterial g{};
+    g.base_color = m.base_color;
+    g.emissive = m.emissive;
+    g.base_color_texture = m.base_color_texture;
+    g.specular_color = m.specular_color;
+    g.metallic = m.metallic;
+    g.roughness = m.roughness;
+    g.transmission = m.transmission;
+    g.ior = m.ior;
+    g.specular = m.specular;
+    g.attenuation = absorption_coefficient(m);
+    g.thickness = m.thickness;
+    g.normal_texture = m.normal_texture;
+    g.normal_scale = m.normal_scale;
+    g.alpha_mode = int(m.alpha_mode);
+    g.alpha_cutoff = alpha_test_cutoff(m);   // BLEND's 0.5 already chosen, as opacity.h does
+    g.base_color_uv_matrix = uv_matrix(m.base_color_transform);
+    g.normal_uv_matrix = uv_matrix(m.normal_transform);
+    g.base_color_uv_offset = m.base_color_transform.offset;
+    g.normal_uv_offset = m.normal_transform.offset;
+    g.metallic_roughness_texture = m.metallic_roughness_texture;
+    g.emissive_texture = m.emissive_texture;
+    g.transmission_texture = m.transmission_texture;
+    return g;
+}
+
+GpuLight to_gpu(const Light& l) {
+    GpuLight g{};
+    g.color = l.color;
+    g.type = std::int32_t(l.type);
+    g.position = l.position;
+    g.intensity = l.intensity;
+    g.direction = l.direction;
+    g.range = l.range;
+    g.inner_cone = l.inner_cone;
+    g.outer_cone = l.outer_cone;
+    g.cos_inner = std::cos(l.inner_cone);
+    g.cos_outer = std::cos(l.outer_cone);
+    return g;
+}
+
+namespace {
+template <class T, class U, class F>
+std::vector<T> convert(const std::vector<U>& in, F f) {
+    std::vector<T> out;
+    out.reserve(in.size());
+    for (const U& u : in) out.push_back(f(u));
+    return out;
+}
+}  // namespace
+
+void GpuScene::upload(const Scene& scene) {
+    const std::size_t vertices = scene.positions.size();
+    if (scene.normals.size() != vertices || scene.uvs.size() != vertices || vertices != scene.triangle_count() * 3)
+        throw std::invalid_argument("GpuScene::upload: positions/normals/uvs/material_ids sizes disagree");
+    ambient_ = scene.ambient;
+    positions_.assign(convert<glm::vec4>(scene.positions, [](const glm::vec3& p) { return glm::vec4(p, 1.0f); }));
+    // With normal maps (docs/shading.md), the tangents follow the normals in the same buffer: vertex i's tangent is
+    // entry 3 * triangles + i (no extra binding, and no bytes at all for scenes without normal maps).
+    std::vector<glm::vec4> normals = convert<glm::vec4>(scene.normals, [](const glm::vec3& n) { return glm::vec4(n, 0.0f); });
+    if (scene.tangents.size() == vertices) normals.insert(normals.end(), scene.tangents.begin(), scene.tangents.end());
+    normals_.assign(normals);
+    uvs_.assign(scene.uvs);
+    material_ids_.assign(scene.material_ids);
+    materials_.assign(convert<GpuMaterial>(scene.materials, [](const Material& m) { return to_gpu(m); }));
+    lights_.assign(convert<GpuLight>(scene.lights, [](const Light& l) { return to_gpu(l); }));
+
+    upload_textures(scene);
+    environment_.upload(scene.environment);
+
+    block_.camera = to_gpu(scene.camera);
+    block_.background = scene.background;
+    block_.triangle_count = std::uint32_t(scene.triangle_count());
+    block_.material_count = std::uint32_t(scene.materials.size());
+    block_.light_count = std::uint32_t(scene.lights.size());
+    block_.texture_count = std::uint32_t(scene.textures.size());
+    block_.environment_rotation = scene.environment ? scene.environment->rotation : glm::vec2(0.0f);
+    if (!ubo_) ubo_ = Buffer(sizeof(GpuSceneBlock));
+    ubo_.upload(&block_, sizeof block_);
+    check_gl("GpuScene::upload");
+}
+
+void GpuScene::upload_camera(const Camera& camera, const glm::vec3& background) {
+    block_.camera = to_gpu(camera);
+    block_.background = background;
+    if (!ubo_) ubo_ = Buffer(sizeof(GpuSceneBlock));
+    ubo_.upload(&block_, sizeof block_);
+}
+
+void GpuScene::upload_textures(const Scene& scene) {
+    // One buffer: the sRGB and alpha tables of rt::sample_texture, a GpuTextureInfo per texture, then each texture's
+    // RGBA8 bytes (the file's, decoded in the shader exactly as the CPU does) right after the previous one. Memory is
+    // the sum of the texture sizes: no texture is padded to the largest.
+    std::vector<float> lut(512);
+    for (int i = 0; i < 256; ++i) {
+        lut[std::size_t(i)] = srgb_to_linear(float(i) / 255.0f);
+        lut[256 + std::size_t(i)] = float(i) / 255.0f;
+    }
+    const std::size_t lut_bytes = lut.size() * sizeof(float);
+    std::vector<GpuTextureInfo> info;
+    std::size_t word = scene.textures.size() * sizeof(GpuTextureInfo) / 4;   // the texels start after the table
+    for (const Texture& t : scene.textures) {
+        const std::size_t texels = t.width > 0 && t.height > 0 ? std::size_t(t.width) * std::size_t(t.height) : 0;
+        if (t.rgba8.size() < texels * 4)
+            throw std::invalid_argument("GpuScene: texture '" + t.name + "' has fewer bytes than width*height*4");
+        info.push_back({t.width, t.height, t.nearest ? 1 : 0, std::uint32_t(word)});
+        word += texels;
+    }
+    const std::size_t bytes = lut_bytes + word * 4;
+    if (bytes > max_storage_block_bytes() || word > 0xffffffffu)
+        throw SceneError("the scene's textures (" + std::to_string(scene.textures.size()) + ") need " +
+                         describe_bytes(bytes) + " in one GPU shader storage block, beyond this GPU's limit "
+                         "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE) of " + describe_bytes(max_storage_block_bytes()));
+    textures_.resize(bytes);
+    textures_.upload(lut.data(), lut_bytes);
+    if (!info.empty()) textures_.upload(info.data(), info.size() * sizeof(GpuTextureInfo), lut_bytes);
+    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        if (t.width > 0 && t.height > 0)
+            textures_.upload(t.rgba8.data(), std::size_t(t.width) * std::size_t(t.height) * 4,
+                             lut_bytes + std::size_t(info[i].first) * 4);
+    }
+    check_gl("GpuScene textures");
+}
+
+void GpuScene::bind() const {
+    positions_.bind(kBindingPositions);
+    normals_.bind(kBindingNormals);
+    uvs_.bind(kBindingUvs);
+    material_ids_.bind(kBindingMaterialIds);
+    materials_.bind(kBindingMaterials);
+    lights_.bind(kBindingLights);
+    textures_.bind(kBindingTextureInfo);
+    ubo_.bind(kUboScene, GL_UNIFORM_BUFFER);
+    environment_.bind();   // nothing without an environment
+}
+
+std::size_t GpuScene::bytes() const {
+    return positions_.size() + normals_.size() + uvs_.size() + material_ids_.size() + materials_.size() +
+           lights_.size() + textures_.size() + ubo_.size();
+}
+
+}  // namespace rt::gpu

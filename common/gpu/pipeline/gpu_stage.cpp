@@ -1,0 +1,148 @@
+#include "gpu_stage.h"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+
+#include <CLI/CLI.hpp>
+
+#include "common/app/pixel_samples.h"
+#include "common/gpu/gl/shader.h"
+
+namespace rt::gpu {
+
+struct GpuStage::Shared {
+    explicit Shared(Traversal traversal) : wavefront(std::move(traversal)) {}
+    GpuScene scene;
+    Wavefront wavefront;
+    GpuTimer timer;
+};
+
+GpuStage::GpuStage(Traversal traversal) : traversal_(std::move(traversal)) {}
+
+void GpuStage::set_traversal(Traversal traversal) {
+    if (shared_) throw std::logic_error("GpuStage::set_traversal after the first frame");
+    traversal_ = std::move(traversal);
+}
+
+GpuStage::~GpuStage() {
+    shared_.reset();   // GL objects go before the context
+}
+
+void GpuStage::add_options(CLI::App& app) {
+    add_gpu_options(app, gpu_options);
+    app_ = &app;
+}
+
+void GpuStage::initialize() {
+    if (gpu_options.window && app_) {
+        // The window shows the image pixel for pixel (so --screenshot equals the headless image).
+        gpu_options.window_width = app_->get_option("--width")->as<int>();
+        gpu_options.window_height = app_->get_option("--height")->as<int>();
+    }
+    context_ = create_context(gpu_options);
+    if (context_.is_window()) {
+        const bool quiet = app_ && app_->get_option("--quiet")->as<bool>();
+        viewer_ = std::make_unique<Viewer>(app_ ? app_->get_name() : "gpu stage", gpu_options.moving_scale);
+        if (!quiet) {
+            std::printf("%s", Viewer::key_help().c_str());
+            std::fflush(stdout);
+        }
+    }
+}
+
+std::string GpuStage::renderer_name() const {
+    if (context_.valid()) return context_.renderer();
+    const GLubyte* name = glGetString ? glGetString(GL_RENDERER) : nullptr;
+    return name ? reinterpret_cast<const char*>(name) : "unknown";
+}
+
+GpuScene& GpuStage::gpu_scene() { return shared_->scene; }
+Wavefront& GpuStage::wavefront() { return shared_->wavefront; }
+GpuTimer& GpuStage::timer() { return shared_->timer; }
+
+void GpuStage::build(const Scene&, const RenderSettings&) {}
+
+void GpuStage::add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats) {
+    const std::map<std::string, double FrameStats::*> bucket = {
+        {"upload", &FrameStats::upload_ms}, {"build", &FrameStats::build_ms},   {"raster", &FrameStats::raster_ms},
+        {"trace", &FrameStats::trace_ms},   {"shadow", &FrameStats::trace_ms},  {"shade", &FrameStats::shade_ms},
+        {"resolve", &FrameStats::shade_ms}, {"camera_rays", &FrameStats::shade_ms}};
+    for (const auto& [phase, ms] : phases) {
+        const auto it = bucket.find(phase);
+        if (it != bucket.end()) stats.*(it->second) += ms;
+    }
+}
+
+FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings& requested_settings) {
+    // A frame only the window shows waits until something changes it (viewer.h); none once the window closed.
+    if (viewer_ && !requested_settings.need_image && !viewer_->wait_for_change(context_, requested_scene)) {
+        closed_ = true;
+        return {};
+    }
+    const auto start = std::chrono::steady_clock::now();
+    // In a window the viewer may render another camera, a paused frame, other effects or depth (viewer.h).
+    const Scene& scene = viewer_ ? viewer_->scene_for_frame(requested_scene) : requested_scene;
+    RenderSettings settings = viewer_ ? viewer_->settings_for_frame(requested_settings) : requested_settings;
+    if (viewer_ && settings.record_tests_per_pixel && !requested_settings.record_tests_per_pixel) {
+        // The H key asked for a heatmap this stage cannot count for this scene: say why, show the image.
+        if (const std::string why = unsupported(scene, settings); !why.empty()) {
+            viewer_->heatmap_unavailable(why);
+            settings.record_tests_per_pixel = false;
+        }
+    }
+    if (context_.valid()) context_.make_current();
+    if (!shared_) shared_ = std::make_unique<Shared>(traversal_);
+    Shared& s = *shared_;
+    s.timer.reset();
+    s.wavefront.timer = &s.timer;
+    const double compile_before = shader_compile_ms();
+    FrameResult result;
+
+    // The scene goes to the GPU once per frame (animated scenes change every frame), then the stage's structure.
+    {
+        auto upload = s.timer.scope("upload");
+        s.scene.upload(scene);
+    }
+    s.wavefront.begin_frame(s.scene, settings);   // compiles the passes when the variant changes
+    build(scene, settings);
+    {
+        // Progress over every sample's 8x8 tiles, shown once the frame has taken a second (not in a window, whose
+        // title says what a frame costs; not with --quiet).
+        const long tiles = long((settings.width + 7) / 8) * long((settings.height + 7) / 8) * long(settings.spp);
+        Progress progress(app_ ? app_->get_name() : "gpu stage", tiles, !settings.quiet && !viewer_);
+        s.wavefront.progress = &progress;
+        for (const glm::vec2& offset : pixel_sample_offsets(settings.spp)) render_sample(scene, settings, offset);
+        s.wavefront.progress = nullptr;
+        progress.finish();
+    }
+    s.wavefront.finish_frame(result);   // image, counters, and the hits and per-pixel tests when asked for
+
+    // Stats every GPU stage reports.
+    const std::vector<std::pair<std::string, double>> phases = s.timer.results();
+    add_phase_times(phases, result.stats);
+    result.stats.compile_ms = shader_compile_ms() - compile_before;
+    if (rasterizes_primary_rays()) result.stats.rasterized_rays = result.stats.counters.rays[int(RayKind::Primary)];
+    nlohmann::json pass_times = nlohmann::json::object();
+    for (const auto& [phase, ms] : phases) pass_times[phase] = ms;
+    result.extra["pass_time_ms"] = pass_times;
+    result.extra["backend"] = context_.valid() ? context_.backend() : "current";
+    result.extra["passes"] = s.wavefront.passes();
+    result.extra["pass_dispatches"] = s.wavefront.dispatches();
+    nlohmann::json defines = nlohmann::json::object();
+    for (const auto& [k, v] : s.wavefront.defines()) defines[k] = v;
+    result.extra["shader_defines"] = defines;
+    std::vector<std::string> programs = s.wavefront.programs();
+    for (std::string& p : stage_programs()) programs.push_back(std::move(p));
+    result.extra["programs"] = programs;
+    add_stage_stats(result);
+
+    if (viewer_) {
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        closed_ = !viewer_->show(context_, window_, s.wavefront, result, settings, ms, gpu_options.screenshot);
+    }
+    return result;
+}
+
+}  // namespace rt::gpu

@@ -1,0 +1,46 @@
+// Stable key-value radix sort of uint32 keys and values on the GPU (least significant digit first; Satish, Harris
+// and Garland 2009 in its simplest form). Each pass sorts by RADIX_BITS = 4 bits of the key:
+//   1. count  (radix_count.comp):   per tile of kSortTile keys, how many keys have each of the 16 digits;
+//   2. scan   (Scan::exclusive):    of those counts, digit-major: where each (digit, tile) starts in the output;
+//   3. scatter (radix_scatter.comp): each key and its value to that start plus its rank among the tile's keys of
+//                                    the same digit, so keys with equal digits keep their order (stable).
+// ceil(key_bits / 4) passes ping-pong between the caller's buffers and two kept scratch buffers.
+//
+// Used by stage 03 (sorting (cell, triangle) pairs) and stage 05 (ray chunks). Needs a current context when
+// constructed; calls only enqueue GPU work and end with a memory barrier, like Scan.
+//
+// Any n up to 2^32 - 1: arrays larger than one shader storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, llvmpipe
+// 128 MiB = 2^25 uints) are bound in windows of at most that size, so nothing is bound past the limit.
+#pragma once
+
+#include <cstddef>
+
+#include "common/gpu/gl/buffer.h"
+#include "scan.h"
+#include "common/gpu/gl/shader.h"
+
+namespace rt::gpu {
+
+constexpr std::size_t kSortTile = 4096;   // keys per work group (radix_common.glsl: SORT_TILE)
+constexpr unsigned kRadixBits = 4;        // radix_common.glsl: RADIX_BITS
+
+class RadixSort {
+public:
+    RadixSort();
+    // Sorts keys[0..n) in place by their low key_bits bits (1..32; 0 leaves everything as it is), moving
+    // values[0..n) along; elements with equal low bits keep their order, and the other bits of a key ride along
+    // unchanged. Both buffers must hold n uints and be different buffers.
+    void sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_bits = 32);
+    // Elements per window (bound range) for arrays beyond one storage block: for tests; 0 = from the GL limit.
+    void set_window_for_testing(std::size_t elements) { window_override_ = elements; }
+
+private:
+    void pass(const Buffer& keys_in, const Buffer& values_in, Buffer& keys_out, Buffer& values_out, std::size_t n,
+              unsigned shift, unsigned bits, std::size_t window);
+    Scan scan_;
+    Program count_, scatter_;
+    Buffer keys_tmp_, values_tmp_, counts_;
+    std::size_t window_override_ = 0;
+};
+
+}  // namespace rt::gpu
