@@ -18,14 +18,15 @@ function(rt_add_gpu_tests stage)
     add_test(NAME gpu.${stage}.window_screenshot
              COMMAND ${CMAKE_COMMAND} -DMODE=window -DEXE=$<TARGET_FILE:${stage}> -DOUT_DIR=${out}
                      -DXVFB_RUN=${RT_XVFB_RUN} -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
-    set_tests_properties(gpu.${stage}.window_screenshot PROPERTIES LABELS "gpu;gpu-${stage}")
+    # One X server at a time: two `xvfb-run -a` started together can pick the same display number.
+    set_tests_properties(gpu.${stage}.window_screenshot PROPERTIES LABELS "gpu;gpu-${stage}" RESOURCE_LOCK xvfb)
     find_program(RT_XDOTOOL xdotool)
     if(RT_XDOTOOL)
       add_test(NAME gpu.${stage}.viewer
                COMMAND ${CMAKE_COMMAND} -DMODE=viewer -DEXE=$<TARGET_FILE:${stage}> -DOUT_DIR=${out}
                        -DXVFB_RUN=${RT_XVFB_RUN} -DSESSION=${CMAKE_CURRENT_SOURCE_DIR}/viewer_session.sh
                        -DCOMPARE=$<TARGET_FILE:image_compare> -P ${script})
-      set_tests_properties(gpu.${stage}.viewer PROPERTIES LABELS "gpu;gpu-${stage}" TIMEOUT 300)
+      set_tests_properties(gpu.${stage}.viewer PROPERTIES LABELS "gpu;gpu-${stage}" TIMEOUT 300 RESOURCE_LOCK xvfb)
     else()
       message(WARNING "xdotool not found (scripts/setup installs it): no viewer test for ${stage}")
     endif()
