@@ -13,7 +13,7 @@
 
 #include "01_naive/naive_renderer.h"
 #include "common/scene/effects.h"
-#include "common/scene/gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 #include "common/trace/shading.h"
 
 namespace rt {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "common/gpu/testing/gpu_test_context.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "01_naive/brute_force_tracer.h"
 #include "hybrid_renderer.h"

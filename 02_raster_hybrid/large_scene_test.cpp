@@ -8,7 +8,7 @@
 #include "02_raster_hybrid/brute_force_traversal.h"
 #include "common/gpu/pipeline/gpu_stage.h"
 #include "common/gpu/testing/gpu_test_context.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "hybrid_renderer.h"
 #include "tests/hit_compare.h"

@@ -7,7 +7,7 @@
 
 #include "01_naive/naive_renderer.h"
 #include "common/gpu/testing/gpu_test_context.h"
-#include "common/scene/builtin_builders.h"
+#include "common/scene/builtin/builtin_builders.h"
 #include "common/scene/effects.h"
 #include "01_naive/brute_force_tracer.h"
 #include "hybrid_renderer.h"

@@ -12,7 +12,7 @@
 #include "01_naive/brute_force_tracer.h"
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "02_raster_hybrid/gbuffer.h"
 #include "hybrid_renderer.h"

@@ -6,7 +6,7 @@
 #include "common/gpu/gl/bindings.h"
 #include "common/gpu/gl/gl_check.h"
 #include "common/gpu/gl/storage_limit.h"
-#include "common/scene/gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 
 namespace rt {
 

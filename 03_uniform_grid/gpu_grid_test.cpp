@@ -13,7 +13,7 @@
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/testing/same_frame_expectations.h"
 #include "common/gpu/gl/storage_limit.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "dda_cases.h"
 #include "tests/hit_compare.h"

@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "01_naive/brute_force_tracer.h"
 #include "uniform_grid.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "dda_cases.h"
 #include "uniform_grid.h"
 

@@ -9,7 +9,7 @@
 
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/intersect.h"
 #include "gpu_ray_hierarchy.h"

@@ -11,7 +11,7 @@
 #include "02_raster_hybrid/hybrid_renderer.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/testing/same_frame_expectations.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "ray_hierarchy_renderer.h"
 #include "tests/stage_test_fixture.h"
 

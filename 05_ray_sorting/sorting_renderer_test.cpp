@@ -5,7 +5,7 @@
 
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/testing/same_frame_expectations.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "sorting_renderer.h"
 #include "tests/stage_test_fixture.h"

@@ -464,7 +464,7 @@ elseif(MODE STREQUAL "extreme_values_stay_finite")
 
 elseif(MODE STREQUAL "help_lists_builtins")
   # --help names every built-in scene, in the very list the "unknown built-in scene" error gives (both come from
-  # builtin_scene_list(), common/scene/builtin_scenes.h): a scene added to the registry shows up in both.
+  # builtin_scene_list(), common/scene/builtin/builtin_scenes.h): a scene added to the registry shows up in both.
   render(rc err --scene builtin:nosuchscene)
   if(NOT rc EQUAL 2 OR NOT err MATCHES "unknown built-in scene 'nosuchscene' \\(known: ([^)]*)\\)")
     message(FATAL_ERROR "expected exit 2 and the list of known scenes, got ${rc}: ${err}")

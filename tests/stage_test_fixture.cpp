@@ -4,7 +4,7 @@
 
 #include "common/app/driver.h"
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 
 namespace rt {

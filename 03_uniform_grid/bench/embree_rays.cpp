@@ -27,8 +27,8 @@
 
 #include "common/app/hit_file.h"
 #include "common/app/stats.h"
-#include "common/scene/builtin_scenes.h"
-#include "common/scene/gltf_io.h"
+#include "common/scene/builtin/builtin_scenes.h"
+#include "common/scene/gltf/gltf_io.h"
 #include "common/scene/scene.h"
 
 namespace {

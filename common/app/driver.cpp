@@ -19,8 +19,8 @@
 #include <CLI/CLI.hpp>
 
 #include "common/scene/whole_file.h"
-#include "common/scene/builtin_scenes.h"
-#include "common/scene/gltf_io.h"
+#include "common/scene/builtin/builtin_scenes.h"
+#include "common/scene/gltf/gltf_io.h"
 #include "common/trace/environment.h"
 #include "atomic_file.h"
 #include "environment_file.h"

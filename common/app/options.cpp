@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "environment_file.h"
 #include "image.h"

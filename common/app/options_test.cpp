@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "driver.h"
 #include "options.h"
 

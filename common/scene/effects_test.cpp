@@ -5,7 +5,7 @@
 
 #include <stdexcept>
 
-#include "builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 
 namespace rt {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "tangents.h"
 
 namespace rt {

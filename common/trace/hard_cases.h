@@ -23,7 +23,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/scene.h"
 #include "offset.h"
 #include "ray.h"

@@ -7,7 +7,7 @@
 
 #include "01_naive/brute_force_tracer.h"
 #include "whitted.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 
 namespace rt {

@@ -14,9 +14,9 @@
 
 #include "01_naive/brute_force_tracer.h"
 #include "common/app/image.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
-#include "common/scene/gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 #include "common/scene/scene.h"
 #include "hard_cases.h"
 #include "intersect.h"

@@ -12,7 +12,7 @@
 #include <random>
 
 #include "common/app/pixel_samples.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/environment.h"
 #include "common/trace/shading.h"

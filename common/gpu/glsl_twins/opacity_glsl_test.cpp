@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/opacity.h"
 #include "common/gpu/pipeline/gpu_scene.h"

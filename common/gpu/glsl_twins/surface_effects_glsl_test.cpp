@@ -10,7 +10,7 @@
 #include <cstring>
 #include <random>
 
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/absorption.h"
 #include "common/trace/normal_map.h"

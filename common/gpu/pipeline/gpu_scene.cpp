@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/scene/gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 #include "common/trace/absorption.h"
 #include "common/trace/opacity.h"
 #include "common/trace/shading.h"

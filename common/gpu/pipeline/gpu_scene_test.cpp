@@ -1,7 +1,7 @@
 // GpuScene's texture storage: unpadded (memory is the sum of the texture sizes) and a clear error past the limit.
 #include <gtest/gtest.h>
 
-#include "common/scene/gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 #include "gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/gl/storage_limit.h"

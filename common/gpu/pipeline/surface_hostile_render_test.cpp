@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "common/app/pixel_samples.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "01_naive/brute_force_tracer.h"
 #include "common/trace/whitted.h"

@@ -11,7 +11,7 @@
 #include "gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "wavefront.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/trace/whitted.h"
 #include "tests/hit_compare.h"
 #include "tests/stage_test_fixture.h"

@@ -16,7 +16,7 @@
 
 #include "01_naive/brute_force_tracer.h"
 #include "common/app/pixel_samples.h"
-#include "common/scene/builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/whitted.h"
 #include "02_raster_hybrid/gbuffer.h"

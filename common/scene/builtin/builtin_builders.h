@@ -6,7 +6,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "scene.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

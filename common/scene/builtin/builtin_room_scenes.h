@@ -2,7 +2,7 @@
 // table: builtin:mirror_box and builtin:office (builtin_scenes.h lists them).
 #pragma once
 
-#include "scene.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

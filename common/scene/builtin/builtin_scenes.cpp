@@ -14,7 +14,7 @@
 #include "builtin_builders.h"
 #include "builtin_room_scenes.h"
 #include "builtin_surface_scenes.h"
-#include "gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 
 namespace rt {
 

@@ -8,7 +8,7 @@
 #include <map>
 #include <tuple>
 
-#include "gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 
 namespace rt {
 namespace {

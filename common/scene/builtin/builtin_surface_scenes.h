@@ -2,7 +2,7 @@
 // transform"): each one uses its effect where a golden image shows it.
 #pragma once
 
-#include "scene.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

@@ -20,8 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "common/scene/builtin_scenes.h"
-#include "common/scene/gltf_io.h"
+#include "common/scene/builtin/builtin_scenes.h"
+#include "common/scene/gltf/gltf_io.h"
 #include "fuzz_gltf_target.h"
 
 namespace {

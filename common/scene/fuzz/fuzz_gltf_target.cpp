@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "common/scene/gltf_io.h"
+#include "common/scene/gltf/gltf_io.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "scene.h"
+#include "common/scene/scene.h"
 
 namespace rt {
 

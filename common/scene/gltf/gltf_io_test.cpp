@@ -11,7 +11,7 @@
 #include <random>
 #include <sstream>
 
-#include "builtin_scenes.h"
+#include "common/scene/builtin/builtin_scenes.h"
 
 namespace rt {
 namespace {

@@ -15,7 +15,7 @@
 #include <tiny_gltf.h>
 
 #include "gltf_common.h"
-#include "scene.h"
+#include "common/scene/scene.h"
 
 namespace rt::gltf_detail {
 

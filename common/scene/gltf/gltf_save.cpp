@@ -12,7 +12,7 @@
 #include <tiny_gltf.h>
 
 #include "gltf_common.h"
-#include "whole_file.h"
+#include "common/scene/whole_file.h"
 
 namespace rt {
 
