@@ -19,15 +19,13 @@ Traversal BruteForceTraversal::traversal() {
 }
 
 void BruteForceTraversal::run(bool any_hit, const BatchTraceInputs& in) {
-    std::string key;
-    for (const auto& [name, value] : in.wavefront.defines()) key += name + "=" + value + ";";
-    if (!closest_ || key != compiled_for_) {
+    if (!closest_ || in.wavefront.defines() != compiled_for_) {
         ShaderDefines any_defines = in.wavefront.defines();
         any_defines.emplace("ANY_HIT", "1");
         any_defines.emplace("RT_SHADOW_RAYS", "1");   // the shadow rule of the opacity test (opacity.glsl)
         closest_ = Program::compute("02_raster_hybrid/shaders/brute_force_slice.comp", in.wavefront.defines());
         any_ = Program::compute("02_raster_hybrid/shaders/brute_force_slice.comp", any_defines);
-        compiled_for_ = key;
+        compiled_for_ = in.wavefront.defines();
     }
     const Program& program = any_hit ? any_ : closest_;
     in.rays.bind(kWavefrontBindingRaysIn);

@@ -33,7 +33,7 @@ private:
     std::function<std::size_t()> triangle_count_;
     std::size_t slice_;
     Program closest_, any_;
-    std::string compiled_for_;   // the wavefront defines the programs were compiled with
+    ShaderDefines compiled_for_;   // the wavefront defines the programs were compiled with
     int dispatches_ = 0;
 };
 

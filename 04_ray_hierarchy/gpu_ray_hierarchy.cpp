@@ -87,10 +87,8 @@ const std::array<HierarchyKindStats, kRayKinds>& GpuRayHierarchy::stats() {
 }
 
 void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
-    std::string key;
-    for (const auto& [name, value] : wavefront.defines()) key += name + "=" + value + ";";
-    if (key == key_ && spheres_) return;
     const gpu::ShaderDefines& d = wavefront.defines();
+    if (d == compiled_for_ && spheres_) return;
     spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", d);
     tree_ = Program::compute("04_ray_hierarchy/shaders/ot_build.comp", d);
     build_ = Program::compute("04_ray_hierarchy/shaders/rh_build.comp", d);
@@ -106,7 +104,7 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     fold_ = Program::compute("04_ray_hierarchy/shaders/rh_fold.comp", d);
     args_pass_ = Program::compute("04_ray_hierarchy/shaders/rh_args.comp", d);
     tally_pass_ = Program::compute("04_ray_hierarchy/shaders/rh_tally.comp", d);
-    key_ = key;
+    compiled_for_ = d;
 }
 
 std::uint32_t GpuRayHierarchy::read_info(int index) {

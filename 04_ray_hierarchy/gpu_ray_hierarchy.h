@@ -126,7 +126,7 @@ private:
     std::uint32_t read_info(int index);
     std::string phase(const char* name) const;
 
-    std::string key_;
+    gpu::ShaderDefines compiled_for_;   // the wavefront defines the programs were compiled with
     gpu::Program spheres_, tree_, build_, heads_, groups_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_,
         args_pass_, tally_pass_;
     gpu::Compaction compaction_;
