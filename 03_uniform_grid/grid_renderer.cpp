@@ -1,28 +1,11 @@
 #include "grid_renderer.h"
 
-#include <algorithm>
-#include <sstream>
 #include <stdexcept>
 
-#include <CLI/CLI.hpp>
-
-#include "common/app/options.h"
 #include "common/gpu/gl/storage_limit.h"
+#include "grid_stats.h"
 
 namespace rt {
-
-glm::ivec3 parse_grid_res(const std::string& text) {
-    glm::ivec3 res;
-    std::istringstream in(text);
-    char c1 = 0, c2 = 0;
-    if (!(in >> res.x >> c1 >> res.y >> c2 >> res.z) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof())
-        throw std::invalid_argument("'" + text + "': expected X,Y,Z (three positive integers)");
-    for (int a = 0; a < 3; ++a)
-        if (res[a] < 1 || res[a] > kMaxGridResPerAxis)
-            throw std::invalid_argument("'" + text + "': each axis must be in 1.." +
-                                        std::to_string(kMaxGridResPerAxis));
-    return res;
-}
 
 GridRenderer::GridRenderer()
     : RasterizedPrimaryStage({"03_uniform_grid/shaders/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }, {}, {}, "grid cells"}) {}
@@ -30,27 +13,7 @@ GridRenderer::~GridRenderer() = default;
 
 void GridRenderer::add_options(CLI::App& app) {
     RasterizedPrimaryStage::add_options(app);
-    app.add_option("--grid-lambda", grid_options.lambda,
-                   "Grid cells per triangle for the resolution heuristic (changes the cost, never the image)")
-        ->capture_default_str()
-        ->check(number_in(1e-3, 1e3));   // finite: NaN and Inf are refused
-    app.add_option_function<std::string>(
-           "--grid-res", [this](const std::string& s) { grid_options.res = parse_grid_res(s); },
-           "Grid resolution X,Y,Z instead of the heuristic")
-        ->check(CLI::Validator(
-            [](std::string& s) {
-                try {
-                    parse_grid_res(s);
-                    return std::string();
-                } catch (const std::invalid_argument& e) {
-                    return std::string(e.what());
-                }
-            },
-            "X,Y,Z"));
-    app.add_option_function<std::string>(
-           "--primary", [this](const std::string& s) { grid_options.trace_primary = s == "trace"; },
-           "Primary rays: raster (stage 02's G-buffer, default) or trace (camera rays through the grid)")
-        ->check(CLI::IsMember({"raster", "trace"}));
+    add_grid_options(app, grid_options);
 }
 
 bool GridRenderer::needs_grid(const Scene& scene, const RenderSettings& settings, bool trace_primary) {
@@ -105,45 +68,28 @@ std::vector<std::string> GridRenderer::stage_programs() const {
 }
 
 void GridRenderer::add_stage_stats(FrameResult& result) {
-    nlohmann::json grid = {{"built", built_}, {"primary", grid_options.trace_primary ? "trace" : "raster"},
-                           {"bounds", "Scene::bounds, from the CPU"}};
-    if (!built_) {
-        result.extra["grid"] = grid;
-        return;
+    GridFrameStats stats;
+    stats.built = built_;
+    stats.trace_primary = grid_options.trace_primary;
+    if (built_) {
+        const GridParams& g = grid_->params();
+        stats.resolution = g.res;
+        if (grid_options.res.x == 0) {   // the heuristic chose the resolution
+            stats.lambda = grid_options.lambda;
+            stats.lambda_used = lambda_used_;
+        }
+        stats.cells = g.cell_count;
+        stats.pairs = grid_->pairs();
+        count_cell_occupancy(grid_->cell_ranges(), stats);
+        stats.build_ms = result.stats.build_ms;
+        // grid.glsl's counters: rays [k], cells visited [kRayKinds + k], tests [2 kRayKinds + k], bound reached
+        // [3 kRayKinds].
+        const std::vector<std::uint64_t> s = grid_->traversal_stats();
+        for (std::size_t k = 0; k < std::size_t(kRayKinds); ++k)
+            stats.walks[k] = {s[k], s[kRayKinds + k], s[2 * kRayKinds + k]};
+        stats.loop_bound_reached = s[3 * kRayKinds];
     }
-    const GridParams& g = grid_->params();
-    const std::vector<std::uint32_t> ranges = grid_->cell_ranges();
-    std::size_t empty = 0, max_size = 0;
-    for (std::size_t c = 0; c < g.cell_count; ++c) {
-        const std::size_t size = ranges[2 * c + 1] - ranges[2 * c];
-        empty += size == 0;
-        max_size = std::max(max_size, size);
-    }
-    const std::size_t non_empty = g.cell_count - empty;
-    grid["resolution"] = {g.res.x, g.res.y, g.res.z};
-    grid["lambda"] = grid_options.res.x > 0 ? nlohmann::json(nullptr) : nlohmann::json(grid_options.lambda);
-    grid["lambda_used"] = grid_options.res.x > 0 ? nlohmann::json(nullptr) : nlohmann::json(lambda_used_);
-    grid["cells"] = g.cell_count;
-    grid["pairs"] = grid_->pairs();
-    grid["empty_cells"] = empty;
-    grid["mean_triangles_per_nonempty_cell"] = non_empty ? double(grid_->pairs()) / double(non_empty) : 0.0;
-    grid["max_triangles_per_cell"] = max_size;
-    grid["build_ms"] = result.stats.build_ms;
-
-    // The traversal's counters, per ray kind.
-    const std::vector<std::uint64_t> s = grid_->traversal_stats();
-    nlohmann::json kinds = nlohmann::json::object();
-    // grid.glsl's layout: rays [k], cells visited [kRayKinds + k], tests [2 kRayKinds + k], bound reached [3 kRayKinds].
-    for (int k = 0; k < kRayKinds; ++k) {
-        if (s[std::size_t(k)] == 0) continue;
-        const double rays = double(s[std::size_t(k)]);
-        kinds[ray_kind_name(RayKind(k))] = {{"rays", s[std::size_t(k)]},
-                                {"cells_visited_per_ray", double(s[std::size_t(kRayKinds + k)]) / rays},
-                                {"tests_per_ray", double(s[std::size_t(2 * kRayKinds + k)]) / rays}};
-    }
-    grid["traversal"] = kinds;
-    grid["loop_bound_reached"] = s[std::size_t(3 * kRayKinds)];
-    result.extra["grid"] = grid;
+    result.extra["grid"] = stats;
 }
 
 }  // namespace rt

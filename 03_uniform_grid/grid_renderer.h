@@ -10,24 +10,16 @@
 
 #include "02_raster_hybrid/rasterized_primary_stage.h"
 #include "gpu_grid.h"
+#include "grid_options.h"
 
 namespace rt {
-
-struct GridOptions {
-    float lambda = kDefaultGridLambda;   // --grid-lambda: cells per triangle (resolution heuristic)
-    glm::ivec3 res{0};                   // --grid-res X,Y,Z (0 = from the heuristic)
-    bool trace_primary = false;          // --primary trace (default raster)
-};
-
-// Parses "X,Y,Z" (each 1..kMaxGridResPerAxis); throws std::invalid_argument with a one-line message otherwise.
-glm::ivec3 parse_grid_res(const std::string& text);
 
 class GridRenderer : public RasterizedPrimaryStage {
 public:
     GridRenderer();
     ~GridRenderer() override;
 
-    void add_options(CLI::App& app) override;   // the GPU options, --grid-lambda, --grid-res, --primary
+    void add_options(CLI::App& app) override;   // the GPU options and grid_options.h's
     GridOptions grid_options;
 
 protected:
@@ -35,7 +27,7 @@ protected:
     void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
     bool rasterizes_primary_rays() const override { return !grid_options.trace_primary; }
     std::vector<std::string> stage_programs() const override;
-    void add_stage_stats(FrameResult& result) override;
+    void add_stage_stats(FrameResult& result) override;   // grid_stats.h
 
 private:
     // Whether any ray of the frame is traced: traced primaries, shadows with lights, or reflections/refractions.
