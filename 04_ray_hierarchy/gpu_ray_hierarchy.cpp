@@ -27,12 +27,6 @@ std::vector<ObjectRange> object_ranges(const std::vector<std::uint32_t>& materia
     return objects;
 }
 
-std::uint64_t HierarchyKindStats::node_tests() const {
-    std::uint64_t n = 0;
-    for (const HierarchyLevelStats& l : levels) n += l.pairs_in;
-    return n - leaf_pairs;
-}
-
 std::vector<std::string> GpuRayHierarchy::program_names() {
     std::vector<std::string> names;
     for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_groups.comp", "rh_build.comp",

@@ -33,18 +33,11 @@
 #include "common/gpu/gl/shader.h"
 #include "common/gpu/pipeline/wavefront.h"
 #include "common/scene/scene.h"
+#include "hierarchy_options.h"
+#include "hierarchy_stats.h"
 #include "object_tree.h"
 
 namespace rt {
-
-struct HierarchyOptions {
-    int branching = 4;          // --branching: 4, 8 or 16 children per node
-    int levels = 3;             // --levels: upper levels used (0 = up to a single root); 04's README: why 3
-    ObjectMode objects = ObjectMode::tree;   // --objects: what the top ray nodes meet (object_tree.h)
-    std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
-    int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
-    bool sphere_test = true;         // --sphere-test: each ray against a triangle's sphere before the exact test
-};
 
 // A run of consecutive triangles (the flattened scene keeps no mesh boundaries: objects are runs of one material).
 struct ObjectRange {
@@ -52,24 +45,6 @@ struct ObjectRange {
 };
 // Runs of equal material id, at most `max_count` triangles each.
 std::vector<ObjectRange> object_ranges(const std::vector<std::uint32_t>& material_ids, std::uint32_t max_count = 4096);
-
-// Per ray kind (shadow, reflection, refraction): what the traversal did, summed over a frame.
-struct HierarchyLevelStats {
-    std::uint64_t nodes = 0, pairs_in = 0, pairs_out = 0;   // pairs tested at the level, and those that survived
-};
-struct HierarchyKindStats {
-    std::uint64_t rays = 0, groups = 0;
-    std::uint64_t object_pairs_in = 0, object_pairs_out = 0;   // pairs tested whose object side is an object node
-    // Per ray level, the pairs tested whose ray side is on it: [0] = single rays (against object nodes and, in
-    // sphere tests, triangles), [1..] nodes.
-    std::vector<HierarchyLevelStats> levels;
-    std::uint64_t leaf_pairs = 0;      // (ray, triangle) pairs that reached the leaves (level 0's pairs_in)
-    std::uint64_t sphere_tests = 0;    // the per-ray test of those pairs before the exact one (--sphere-test on)
-    std::uint64_t local_tests = 0;     // exact ray/triangle tests at the leaves (the pairs that passed it)
-    std::uint64_t fold_tests = 0;      // the closest-hit fold's re-tests (rh_closest.glsl)
-    std::uint64_t brute_force_tests = 0;   // rays x triangles
-    std::uint64_t node_tests() const;   // every cone+sphere test of the traversal but the leaves' pairs
-};
 
 class GpuRayHierarchy {
 public:

@@ -20,7 +20,7 @@ public:
     RayHierarchyRenderer();
     ~RayHierarchyRenderer() override;
 
-    void add_options(CLI::App& app) override;   // the GPU options, --branching, --levels, --objects, --sphere-test
+    void add_options(CLI::App& app) override;   // the GPU options and hierarchy_options.h's
     // --heatmap on a scene with cut-outs: the leaf pass would need a 17th storage block (GL 4.5 guarantees 16).
     std::string unsupported(const Scene& scene, const RenderSettings& settings) const override;
     HierarchyOptions hierarchy_options;
@@ -29,7 +29,7 @@ protected:
     void build(const Scene& scene, const RenderSettings& settings) override;
     void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
     std::vector<std::string> stage_programs() const override;
-    void add_stage_stats(FrameResult& result) override;
+    void add_stage_stats(FrameResult& result) override;   // hierarchy_stats.h
     // One batch of the pipeline through the hierarchy (stage 05 overrides it to sort the batch's rays first).
     virtual void trace_batch(const gpu::BatchTraceInputs& in, bool shadow);
 

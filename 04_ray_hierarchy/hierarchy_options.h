@@ -1,0 +1,26 @@
+// Stage 04's command-line options: the shape of the ray hierarchy (branching, levels used), what its top nodes meet
+// (the objects) and the per-ray sphere test. The traversal reads the struct; add_hierarchy_options declares it to
+// the command line (CLI11).
+#pragma once
+
+#include <cstddef>
+
+#include "object_tree.h"
+
+namespace CLI { class App; }
+
+namespace rt {
+
+struct HierarchyOptions {
+    int branching = 4;          // --branching: 4, 8 or 16 children per node
+    int levels = 3;             // --levels: upper levels used (0 = up to a single root); 04's README: why 3
+    ObjectMode objects = ObjectMode::tree;   // --objects: what the top ray nodes meet (object_tree.h)
+    std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
+    int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
+    bool sphere_test = true;         // --sphere-test: each ray against a triangle's sphere before the exact test
+};
+
+// --branching, --levels, --objects and --sphere-test, written into `options` when parsed.
+void add_hierarchy_options(CLI::App& app, HierarchyOptions& options);
+
+}  // namespace rt
