@@ -2,10 +2,8 @@
 
 #include <cmath>
 
-#include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
-#include "common/app/options.h"
 #include "common/gpu/gl/bindings.h"
 
 namespace rt {
@@ -14,7 +12,6 @@ namespace {
 
 // Timer phases per batch kind (pass_time_ms in the stats).
 const char* const kSortPhase[2] = {"rs_sort.trace", "rs_sort.shadow"};
-const char* const kBatchKind[2] = {"trace", "shadow"};
 
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
@@ -26,60 +23,12 @@ constexpr unsigned kStageBinding[] = {gpu::kBindingWavefrontTraversalFirst + 0,
 
 }  // namespace
 
-const char* sort_mode_name(SortMode mode) {
-    switch (mode) {
-        case SortMode::off: return "off";
-        case SortMode::on: return "on";
-        case SortMode::automatic: return "auto";
-    }
-    return "?";
-}
-
 RaySortingRenderer::RaySortingRenderer() = default;
 RaySortingRenderer::~RaySortingRenderer() = default;
 
 void RaySortingRenderer::add_options(CLI::App& app) {
     RayHierarchyRenderer::add_options(app);
-    app.add_option_function<std::string>(
-           "--sort",
-           [this](const std::string& s) {
-               sort_options.mode = s == "on" ? SortMode::on : s == "off" ? SortMode::off : SortMode::automatic;
-           },
-           "Sort each batch of rays before building the hierarchy: auto (default: keep the sorted order only where "
-           "it makes the lowest nodes tighter), on (always) or off (exactly stage 04)")
-        ->check(CLI::IsMember({"auto", "on", "off"}));
-    app.add_option("--key-bits", sort_options.key_bits,
-                   "Bits of a ray's key for its origin cell (cubic cells over the scene box) and direction cell")
-        ->capture_default_str()
-        ->check(whole_number_in(1, 32));
-    app.add_option("--direction-bits", sort_options.direction_bits,
-                   "Of the key bits, those of the coarse direction cell above the origin in reflection and "
-                   "refraction rays' keys")
-        ->capture_default_str()
-        ->check(whole_number_in(0, 32));
-    CLI::Option* shadow_bits =
-        app.add_option("--shadow-direction-bits", sort_options.shadow_direction_bits,
-                       "Of the key bits, those of the direction cell below the origin in shadow rays' keys (the "
-                       "default gives way to half of a --key-bits below it)")
-            ->capture_default_str()
-            ->check(whole_number_in(0, 32));
-    CLI::Option* fine_bits =
-        app.add_option("--fine-direction-bits", sort_options.fine_direction_bits,
-                       "With --sort auto, reflection and refraction batches are also sorted with this many bits of "
-                       "a finer direction cell, and the tighter order is kept (0: one key; the default gives way to "
-                       "none under a shorter --key-bits)")
-            ->capture_default_str()
-            ->check(whole_number_in(0, 32));
-    app.parse_complete_callback([this, shadow_bits, fine_bits] {
-        for (auto [name, bits, given] : {std::tuple{"--direction-bits", sort_options.direction_bits, true},
-                                         {"--shadow-direction-bits", sort_options.shadow_direction_bits,
-                                          shadow_bits->count() > 0},
-                                         {"--fine-direction-bits", sort_options.fine_direction_bits,
-                                          fine_bits->count() > 0}})
-            if (bits > sort_options.key_bits && given)
-                throw CLI::ValidationError(name, std::to_string(bits) + " exceeds --key-bits " +
-                                                     std::to_string(sort_options.key_bits));
-    });
+    add_sort_options(app, sort_options);
 }
 
 unsigned RaySortingRenderer::shadow_direction_bits() const {
@@ -125,7 +74,7 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     }
     const std::size_t n = in.count;
     const unsigned stride = shadow ? 1u : unsigned(sizeof(gpu::WavefrontTraceResult) / 4);
-    BatchStats& stats = batch_stats_[shadow ? 1 : 0];
+    SortBatchStats& stats = batch_stats_[shadow ? 1 : 0];
     {
         auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
         sorter_->layout = layouts_[shadow ? 1 : 0];   // ray_keys.h: which order suits which rays
@@ -181,49 +130,21 @@ std::vector<std::string> RaySortingRenderer::stage_programs() const {
 
 void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     RayHierarchyRenderer::add_stage_stats(result);
-    nlohmann::json rs = {{"sort", sort_options.sorts()}, {"mode", sort_mode_name(sort_options.mode)}};
-    if (sort_options.sorts()) {
-        nlohmann::json key = {{"key_bits", sort_options.key_bits},
-                              {"direction_bits", sort_options.direction_bits},
-                              {"shadow_direction_bits", shadow_direction_bits()},
-                              {"fine_direction_bits", fine_direction_bits()},
-                              {"groups", layouts_[0].group_count}};
-        for (int k = 0; k < 3; ++k) {
-            if (k == 2 && fine_direction_bits() == 0) continue;
-            const RayKeyLayout& L = layouts_[std::size_t(k)];
-            key[k == 2 ? "trace_fine" : kBatchKind[k]] = {
-                {"order", key_order_name(L.direction_major ? KeyOrder::direction_first : KeyOrder::origin_first)},
-                {"cell_size", L.cell_size},
-                {"origin_bits", {L.origin_bits.x, L.origin_bits.y, L.origin_bits.z}},
-                {"octahedral_bits", {L.direction_bits.x, L.direction_bits.y}},
-                {"bits_used", L.key_bits},
-                {"hash_bits_dropped", L.hash_drop},
-                {"sort_bits", L.sort_bits}};
-        }
-        rs["key"] = key;
-        const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
-        nlohmann::json batches = nlohmann::json::object();
-        // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
-        // them with --sort on (one key); with auto the GPU's choice, read here once per frame.
-        std::array<GpuOrderChoice::Tally, 2> kept{};
-        if (sort_options.mode == SortMode::automatic) kept = choice_.tally();
-        for (int k = 0; k < 2; ++k) {
-            const BatchStats& s = batch_stats_[std::size_t(k)];
-            if (s.batches == 0) continue;
-            if (sort_options.mode == SortMode::on) kept[std::size_t(k)] = {s.batches, s.rays};
-            batches[kBatchKind[k]] = {
-                {"batches", s.batches},
-                {"rays", s.rays},
-                {"chunks", s.chunks},
-                {"rays_per_chunk", s.chunks ? double(s.rays) / double(s.chunks) : 0.0},
-                {"sorted_batches", kept[std::size_t(k)].batches},
-                {"sorted_rays", kept[std::size_t(k)].rays},
-                {"fine_batches", kept[std::size_t(k)].fine_batches},
-                {"sort_ms", pass_ms.contains(kSortPhase[k]) ? double(pass_ms[kSortPhase[k]]) : 0.0}};
-        }
-        rs["batches"] = batches;
-    }
-    result.extra["ray_sorting"] = rs;
+    SortFrameStats f;
+    f.options = sort_options;
+    f.shadow_direction_bits = shadow_direction_bits();
+    f.fine_direction_bits = fine_direction_bits();
+    f.layouts = layouts_;
+    f.batches = batch_stats_;
+    // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
+    // them with --sort on (one key); with auto the GPU's choice, read here once per frame.
+    if (sort_options.mode == SortMode::automatic) f.kept = choice_.tally();
+    if (sort_options.mode == SortMode::on)
+        for (std::size_t k = 0; k < 2; ++k) f.kept[k] = {batch_stats_[k].batches, batch_stats_[k].rays};
+    const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
+    for (std::size_t k = 0; k < 2; ++k)
+        f.sort_ms[k] = pass_ms.contains(kSortPhase[k]) ? double(pass_ms[kSortPhase[k]]) : 0.0;
+    result.extra["ray_sorting"] = f;
 }
 
 }  // namespace rt

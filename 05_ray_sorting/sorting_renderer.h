@@ -13,46 +13,26 @@
 #include "04_ray_hierarchy/ray_hierarchy_renderer.h"
 #include "order_choice.h"
 #include "ray_sort.h"
+#include "sort_options.h"
+#include "sort_stats.h"
 
 namespace rt {
-
-// The key of each batch kind (ray_keys.h): reflection and refraction rays [coarse direction | cubic origin], shadow
-// rays [cubic origin | direction].
-enum class SortMode {
-    off,         // queue order: exactly stage 04
-    on,          // every batch sorted
-    automatic,   // every batch sorted, the sorted order kept only where it is tighter (order_choice.h)
-};
-const char* sort_mode_name(SortMode mode);   // "off", "on", "auto"
-
-struct SortOptions {
-    SortMode mode = SortMode::automatic;   // --sort auto|on|off
-    bool sorts() const { return mode != SortMode::off; }
-    unsigned key_bits = 30;              // --key-bits: origin + direction bits of a key
-    unsigned direction_bits = 4;         // --direction-bits: the coarse direction cell of reflection/refraction keys
-    unsigned shadow_direction_bits = 12; // --shadow-direction-bits: the direction cell below a shadow key's origin
-    unsigned fine_direction_bits = 8;    // --fine-direction-bits: --sort auto's second reflection/refraction key
-                                         // (0 or = direction_bits: none)
-};
 
 class RaySortingRenderer : public RayHierarchyRenderer {
 public:
     RaySortingRenderer();
     ~RaySortingRenderer() override;
 
-    void add_options(CLI::App& app) override;   // stage 04's, --sort, --key-bits, --[shadow-]direction-bits
+    void add_options(CLI::App& app) override;   // stage 04's and sort_options.h's
     SortOptions sort_options;
 
 protected:
     void build(const Scene& scene, const RenderSettings& settings) override;
     void trace_batch(const gpu::BatchTraceInputs& in, bool shadow) override;
     std::vector<std::string> stage_programs() const override;
-    void add_stage_stats(FrameResult& result) override;
+    void add_stage_stats(FrameResult& result) override;   // stage 04's and sort_stats.h's
 
 private:
-    struct BatchStats {   // per batch kind: 0 = trace (reflection, refraction), 1 = shadow
-        std::uint64_t batches = 0, rays = 0, chunks = 0;
-    };
     float diagonal_ = 1.0f;   // the scene box's diagonal (the choice's unit of width)
     void compile();
     // sort_options' value; above key_bits (the default, a short key) half of it.
@@ -67,7 +47,7 @@ private:
     std::array<RayKeyLayout, 3> layouts_{};
     gpu::Program gather_, scatter_;
     gpu::Buffer order_, fine_order_, sorted_rays_, sorted_results_;
-    std::array<BatchStats, 2> batch_stats_{};
+    std::array<SortBatchStats, 2> batch_stats_{};
 };
 
 }  // namespace rt
