@@ -2,6 +2,7 @@
 tests-per-pixel heatmap on one shared scale) and metrics, the HTML page, and the headless-browser check that the page
 loads. scripts/grade decides the verdicts; this module only draws them.
 """
+import concurrent.futures
 import html
 import json
 import os
@@ -108,23 +109,27 @@ def render_heatmap(build, stage, scene, args, path, scale_max=0):
 def add_heatmaps(build, report, staging, scenes_args):
     """Every scene's heatmap, all on one scale from 0 to the most tests any pixel of the report took (so they
     compare colour for colour); a scene whose heatmap cannot be made says why."""
+    scenes = [(stage, sc) for stage, st in report["stages"].items() for sc in st["scenes"]]
+    path = {id(sc): os.path.join(staging, f"{stage}/{sc['name']}_heatmap.png") for stage, sc in scenes}
     own = {}
-    for stage, st in report["stages"].items():
-        for sc in st["scenes"]:
-            path = os.path.join(staging, f"{stage}/{sc['name']}_heatmap.png")
-            most, error = render_heatmap(build, stage, sc["scene"], scenes_args[sc["name"]], path)
+    # The renders run side by side, one a core (each is a process of its own).
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        first = {id(sc): pool.submit(render_heatmap, build, stage, sc["scene"], scenes_args[sc["name"]], path[id(sc)])
+                 for stage, sc in scenes}
+        for stage, sc in scenes:
+            most, error = first[id(sc)].result()
             if error:
                 sc["heatmap_error"] = error
             else:
-                own[(stage, sc["name"])] = most
-    top = max(own.values(), default=0)
-    for stage, st in report["stages"].items():
-        for sc in st["scenes"]:
-            if (stage, sc["name"]) not in own:
-                continue
-            path = os.path.join(staging, f"{stage}/{sc['name']}_heatmap.png")
-            if own[(stage, sc["name"])] != top and top > 0:
-                render_heatmap(build, stage, sc["scene"], scenes_args[sc["name"]], path, top)
+                own[id(sc)] = most
+        top = max(own.values(), default=0)
+        # Again on the shared scale, each scene whose own top is lower.
+        again = [pool.submit(render_heatmap, build, stage, sc["scene"], scenes_args[sc["name"]], path[id(sc)], top)
+                 for stage, sc in scenes if id(sc) in own and own[id(sc)] != top and top > 0]
+        for f in again:
+            f.result()
+    for stage, sc in scenes:
+        if id(sc) in own:
             sc["images"]["tests per pixel (0 to %d)" % top] = f"{stage}/{sc['name']}_heatmap.png"
     report["heatmap_scale_max"] = top
 

@@ -20,8 +20,11 @@ endforeach()
 #                    [REFERENCE_NAME <name>] [PREFIX golden] [ARGS ...])
 # REFERENCE_STAGE/REFERENCE_NAME compare with another golden (cross-stage agreement, far against whitted). Only a
 # golden.* test writes its reference in update mode (RT_UPDATE_GOLDENS=1); the others refuse to run then.
+# REUSE_GOLDEN_FRAME: render nothing, compare the frame golden.<stage>.<name> rendered with the same command (a CTest
+# fixture: CTest runs golden.* first, and when it fails this test is not run and counts as failed).
 function(rt_add_golden_test)
-  cmake_parse_arguments(G "" "STAGE;NAME;SCENE;REFERENCE_STAGE;REFERENCE_NAME;PREFIX" "ARGS;LABELS" ${ARGN})
+  cmake_parse_arguments(G "REUSE_GOLDEN_FRAME" "STAGE;NAME;SCENE;REFERENCE_STAGE;REFERENCE_NAME;PREFIX" "ARGS;LABELS"
+                        ${ARGN})
   if(NOT G_REFERENCE_STAGE)
     set(G_REFERENCE_STAGE ${G_STAGE})
   endif()
@@ -36,13 +39,22 @@ function(rt_add_golden_test)
     set(own_reference 1)
   endif()
   string(REPLACE ";" "|" args "${G_ARGS}")   # "|"-separated: a ";" would split the test command
+  set(rendered_in "")
+  if(G_REUSE_GOLDEN_FRAME)
+    set(rendered_in ${CMAKE_BINARY_DIR}/test-output/golden/${G_STAGE})
+  endif()
   add_test(NAME ${G_PREFIX}.${G_STAGE}.${G_NAME}
            COMMAND ${CMAKE_COMMAND} -DSTAGE=$<TARGET_FILE:${G_STAGE}> -DSTAGE_NAME=${G_STAGE} -DSCENE=${G_SCENE}
                    -DNAME=${G_NAME} -DGOLDEN=${PROJECT_SOURCE_DIR}/tests/golden/${G_REFERENCE_STAGE}/${G_REFERENCE_NAME}.png
                    -DOWN_REFERENCE=${own_reference}
                    -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/${G_PREFIX}/${G_STAGE} -DCOMPARE=$<TARGET_FILE:image_compare>
-                   "-DARGS=${args}" -P ${CMAKE_CURRENT_SOURCE_DIR}/run_golden.cmake)
+                   "-DARGS=${args}" -DRENDERED_IN=${rendered_in} -P ${CMAKE_CURRENT_SOURCE_DIR}/run_golden.cmake)
   set_tests_properties(${G_PREFIX}.${G_STAGE}.${G_NAME} PROPERTIES LABELS "${G_PREFIX};${G_PREFIX}-${G_STAGE};${G_LABELS}")
+  if(own_reference)
+    set_tests_properties(${G_PREFIX}.${G_STAGE}.${G_NAME} PROPERTIES FIXTURES_SETUP frame.${G_STAGE}.${G_NAME})
+  elseif(G_REUSE_GOLDEN_FRAME)
+    set_tests_properties(${G_PREFIX}.${G_STAGE}.${G_NAME} PROPERTIES FIXTURES_REQUIRED frame.${G_STAGE}.${G_NAME})
+  endif()
 endfunction()
 
 # One test per line of tests/golden/scenes.txt, all with the same PREFIX/REFERENCE_STAGE (extra arguments).
@@ -64,7 +76,8 @@ foreach(stage IN LISTS RT_STAGES)
   rt_add_golden_tests(${stage})
   rt_add_far_test(${stage})
   if(NOT stage STREQUAL "01_naive")
-    # Cross-stage agreement: every later stage's images match 01's references within the same tolerance.
-    rt_add_golden_tests(${stage} REFERENCE_STAGE 01_naive PREFIX agree)
+    # Cross-stage agreement: every later stage's images match 01's references within the same tolerance (the
+    # frame golden.* rendered: the same command gives the same frame).
+    rt_add_golden_tests(${stage} REFERENCE_STAGE 01_naive PREFIX agree REUSE_GOLDEN_FRAME)
   endif()
 endforeach()

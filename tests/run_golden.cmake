@@ -3,7 +3,9 @@
 #   cmake -DSTAGE=<exe> -DSTAGE_NAME=01_naive -DSCENE=builtin:whitted -DNAME=whitted -DGOLDEN=<png> -DOUT_DIR=<dir>
 #         -DCOMPARE=<image_compare exe> -DOWN_REFERENCE=1 [-DARGS="--a|b"] -P run_golden.cmake
 # OWN_REFERENCE=0: GOLDEN belongs to another test (agree.*, far_like_whitted.*). With "--frames N" in ARGS the
-# stage writes N numbered images and the last one is compared.
+# stage writes N numbered images and the last one is compared. With -DRENDERED_IN=<dir> nothing is rendered: the
+# frame is the one golden.<stage>.<name> left in <dir> with the same command (agree.* requires it as a CTest
+# fixture), so a scene is rendered once for both comparisons.
 string(REPLACE "|" ";" ARGS "${ARGS}")
 set(update OFF)
 set(update_counts OFF)
@@ -25,7 +27,11 @@ set(ext exr)   # float, so NaN/Inf can be detected; a PNG when it becomes the re
 if(update)
   set(ext png)
 endif()
-set(image ${OUT_DIR}/${NAME}.${ext})  # what the stage is told to write
+set(render_dir ${OUT_DIR})
+if(RENDERED_IN)
+  set(render_dir ${RENDERED_IN})
+endif()
+set(image ${render_dir}/${NAME}.${ext})  # what the stage is told to write
 set(actual ${image})                 # the frame compared
 list(FIND ARGS --frames frames_at)
 if(frames_at GREATER_EQUAL 0)
@@ -37,14 +43,20 @@ if(frames_at GREATER_EQUAL 0)
     string(PREPEND last "0")
     math(EXPR digits "${digits} + 1")
   endwhile()
-  set(actual ${OUT_DIR}/${NAME}_${last}.${ext})
+  set(actual ${render_dir}/${NAME}_${last}.${ext})
 endif()
-file(REMOVE ${actual})
-execute_process(COMMAND ${STAGE} --scene ${SCENE} --width 160 --height 120 --quiet --out ${image}
-                        --stats ${OUT_DIR}/${NAME}.json ${ARGS}
-                RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "${STAGE_NAME} failed to render ${SCENE} (exit ${rc})")
+if(RENDERED_IN)
+  if(NOT EXISTS ${actual} OR NOT EXISTS ${render_dir}/${NAME}.json)
+    message(FATAL_ERROR "no frame ${actual}: golden.${STAGE_NAME}.${NAME} renders it (it did not, or failed)")
+  endif()
+else()
+  file(REMOVE ${actual})
+  execute_process(COMMAND ${STAGE} --scene ${SCENE} --width 160 --height 120 --quiet --out ${image}
+                          --stats ${render_dir}/${NAME}.json ${ARGS}
+                  RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${STAGE_NAME} failed to render ${SCENE} (exit ${rc})")
+  endif()
 endif()
 # The frame's counts (its stats): the rays of each kind, and the work (ray/triangle tests; the grid's cells and
 # pairs in 03; the node tests, leaf pairs and exact tests per ray kind in 04 and 05). They are exact, as the hits
@@ -56,7 +68,7 @@ endif()
 set(counts_file ${OUT_DIR}/${NAME}.counts)
 set(reference_counts ${GOLDEN})
 string(REGEX REPLACE "\\.png$" ".counts" reference_counts "${GOLDEN}")
-file(READ ${OUT_DIR}/${NAME}.json stats)
+file(READ ${render_dir}/${NAME}.json stats)
 set(counts "")
 set(work "")
 foreach(kind primary rasterized shadow reflection refraction transparency)
