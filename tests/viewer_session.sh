@@ -4,7 +4,7 @@
 # compares, the screenshots the P key saves:
 #   <stage>_view_0000.png  the window as it opened
 #   <stage>_view_0001.png  after key 1 (shadows off)
-#   <stage>_view_0002.png  after a left drag (orbit)
+#   <stage>_view_0002.png  after a left drag (orbit), held until a frame was rendered while moving
 # then it waits 2 s and Esc closes the window; the stage must exit 0. Every wait gives up after 60 s.
 # The viewer runs with --moving-scale 4, and its closing summary (viewer.h) must show that the drag rendered frames
 # at a quarter of the size and that the still window rendered nothing (at most 12 frames in all, where a viewer
@@ -37,7 +37,20 @@ xdotool key p
 wait_for "${stage}_view_0000.png"
 xdotool key 1 key p
 wait_for "${stage}_view_0001.png"
-xdotool mousemove --window "$win" 20 30 mousedown 1 mousemove --window "$win" 50 30 mousemove --window "$win" 70 34 mouseup 1
+# The drag: the button stays down, and the pointer keeps moving, until the title says a frame was rendered while
+# moving ("moving: WxH (1/N)"). A drag begun and ended between two frames (a loaded machine: one frame can take
+# longer than the whole gesture) moves the camera but rightly renders no reduced frame, so the test must not end it
+# before one was shown.
+xdotool mousemove --window "$win" 20 30 mousedown 1
+x=20
+for _ in $(seq 600); do
+  x=$(( x < 70 ? x + 5 : 20 ))
+  xdotool mousemove --window "$win" "$x" 32
+  xdotool search --name "\| moving: " > /dev/null 2>&1 && break
+  kill -0 "$pid" 2>/dev/null || fail "the stage exited during the drag"
+  sleep 0.1
+done
+xdotool mousemove --window "$win" 70 34 mouseup 1
 xdotool key p
 wait_for "${stage}_view_0002.png"
 sleep 2
