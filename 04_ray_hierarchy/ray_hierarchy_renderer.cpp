@@ -65,13 +65,12 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     f.windows = hierarchy_->windows;
     f.fold_rounds = hierarchy_->fold_rounds;
     f.hit_list_prunes = hierarchy_->prunes;
-    const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
-    auto ms = [&](const std::string& name) { return pass_ms.contains(name) ? double(pass_ms[name]) : 0.0; };
     for (int k = 1; k < kRayKinds; ++k) {
         const std::string kind = ray_kind_name(RayKind(k));
-        f.times[std::size_t(k)] = {ms("rh_build." + kind), ms("rh_traverse." + kind), ms("rh_local." + kind)};
+        f.times[std::size_t(k)] = {pass_ms(result, "rh_build." + kind), pass_ms(result, "rh_traverse." + kind),
+                                   pass_ms(result, "rh_local." + kind)};
     }
-    f.fold_ms = ms("rh_local.fold");
+    f.fold_ms = pass_ms(result, "rh_local.fold");
     result.extra["ray_hierarchy"] = f;
 }
 

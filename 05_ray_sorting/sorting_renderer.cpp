@@ -141,9 +141,7 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     if (sort_options.mode == SortMode::automatic) f.kept = choice_.tally();
     if (sort_options.mode == SortMode::on)
         for (std::size_t k = 0; k < 2; ++k) f.kept[k] = {batch_stats_[k].batches, batch_stats_[k].rays};
-    const nlohmann::json& pass_ms = result.extra["pass_time_ms"];
-    for (std::size_t k = 0; k < 2; ++k)
-        f.sort_ms[k] = pass_ms.contains(kSortPhase[k]) ? double(pass_ms[kSortPhase[k]]) : 0.0;
+    for (std::size_t k = 0; k < 2; ++k) f.sort_ms[k] = pass_ms(result, kSortPhase[k]);
     result.extra["ray_sorting"] = f;
 }
 

@@ -48,8 +48,6 @@ fs::path shader_root() {
     return root;
 }
 
-fs::path common_shader_dir() { return shader_root() / "common" / "shaders"; }
-
 fs::path shader_path(const fs::path& relative) {
     return relative.is_absolute() ? relative : shader_root() / relative;
 }

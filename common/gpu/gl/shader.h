@@ -47,8 +47,6 @@ ShaderDefines effect_defines(const Effects& effects);
 // The shader root: $RT_SHADER_DIR when set, else <directory of /proc/self/exe>/../shaders. Throws ShaderError when
 // the folder does not exist.
 std::filesystem::path shader_root();
-// shader_root() / "common" / "shaders": the shared GLSL.
-std::filesystem::path common_shader_dir();
 // A path relative to shader_root() (absolute paths are returned unchanged).
 std::filesystem::path shader_path(const std::filesystem::path& relative);
 

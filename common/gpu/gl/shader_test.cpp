@@ -116,7 +116,7 @@ TEST(Shader, LogMappingOfOtherDrivers) {
 }
 
 TEST(Shader, BindingsMatchBetweenCppAndGlsl) {
-    std::ifstream in(common_shader_dir() / "bindings.glsl");
+    std::ifstream in(shader_root() / "common" / "shaders" / "bindings.glsl");
     ASSERT_TRUE(in);
     std::map<std::string, unsigned> glsl;
     const std::regex def(R"(^#define\s+(RT_\w+)\s+(\d+)\s*$)");

@@ -64,6 +64,13 @@ GpuTimer& GpuStage::timer() { return shared_->timer; }
 
 void GpuStage::build(const Scene&, const RenderSettings&) {}
 
+double GpuStage::pass_ms(const FrameResult& result, const std::string& phase) {
+    const auto times = result.extra.find("pass_time_ms");
+    if (times == result.extra.end()) return 0.0;
+    const auto ms = times->find(phase);
+    return ms == times->end() ? 0.0 : ms->get<double>();
+}
+
 void GpuStage::add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats) {
     const std::map<std::string, double FrameStats::*> bucket = {
         {"upload", &FrameStats::upload_ms}, {"build", &FrameStats::build_ms},   {"raster", &FrameStats::raster_ms},

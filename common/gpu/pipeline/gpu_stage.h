@@ -51,6 +51,8 @@ public:
     // "upload", "build", "raster" as they are; "trace" and "shadow" into trace; "shade", "resolve" and
     // "camera_rays" into shade.
     static void add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats);
+    // A phase's GPU time in a finished frame (its pass_time_ms entry, "rh_build.shadow" say); 0 when it did not run.
+    static double pass_ms(const FrameResult& result, const std::string& phase);
 
 protected:
     // The stage's acceleration structure over the uploaded scene (gpu_scene()); time its passes with
