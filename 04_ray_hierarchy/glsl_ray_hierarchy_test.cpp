@@ -1,6 +1,7 @@
 // Stage 04's GLSL twins (shaders/rh_common.glsl) against the hierarchy's two properties, on the adversarial ray sets
 // (ray_sets.h): every ray inside all its ancestors, and no rejected (node, triangle) pair that a ray below hits;
-// empty children left out of the union.
+// empty children left out of the union; the leaves' two cheap per-ray tests keep every hit (and the box test, all
+// additions, divisions and comparisons, equals its C++ twin bit for bit).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -9,6 +10,7 @@
 #include "common/gpu/testing/glsl_test_harness.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/trace/intersect.h"
+#include "object_tree.h"
 #include "ray_hierarchy.h"
 #include "ray_sets.h"
 
@@ -130,6 +132,47 @@ void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec
             }
         }
     EXPECT_GT(rejected, 1000u);
+}
+
+// The leaves' per-ray tests in GLSL on every (ray, triangle) pair of the adversarial sets (each ray unbounded or
+// ending short of the scene) and on rays aimed at triangles' edges and vertices: the sphere test and the box test
+// keep every pair the exact test hits, and the box test answers as its C++ twin.
+TEST(GlslRayHierarchy, RayTestsOfTheLeavesKeepEveryHitAndTheBoxTestEqualsItsTwin) {
+    gpu::test_context();
+    static gpu::GlslTestHarness tests("rh_ray_tests", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
+void test_main() {
+    const vec3 o = in_vec3(0u), d = in_vec3(3u), a = in_vec3(7u), b = in_vec3(10u), c = in_vec3(13u);
+    out_b(0u, rh_ray_may_hit(o, d, in_f(6u), rh_triangle_sphere(a, b, c)));
+    out_b(1u, rh_ray_box_may_hit(o, d, in_f(6u), a, b, c));
+})");
+    std::vector<ray_sets::AimedRay> pairs = ray_sets::aimed_rays();
+    for (const ray_sets::Case& c : ray_sets::all())
+        for (std::size_t t = 0; t < c.triangles.size() / 3; ++t)
+            for (std::size_t i = 0; i < c.rays.size(); ++i) {
+                ray_sets::AimedRay a;
+                a.ray = c.rays[i];
+                a.tmax = i % 2 ? INFINITY : float(i % 7) * 0.3f * glm::length(c.triangles[0] - c.triangles[1]);
+                for (int k = 0; k < 3; ++k) a.v[k] = c.triangles[3 * t + std::size_t(k)];
+                pairs.push_back(a);
+            }
+    Words in;
+    for (const ray_sets::AimedRay& a : pairs) in << a.ray.origin << a.ray.direction << a.tmax << a.v[0] << a.v[1] << a.v[2];
+    const auto out = tests.run(in.words, pairs.size(), 16, 2);
+    std::size_t sphere_culled = 0, box_culled = 0, hits = 0;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+        const ray_sets::AimedRay& a = pairs[p];
+        ASSERT_EQ(out[2 * p + 1] != 0, rh_ray_box_may_hit(a.ray.origin, a.ray.direction, a.tmax, a.v[0], a.v[1], a.v[2]))
+            << "pair " << p << " tmax " << a.tmax;
+        sphere_culled += out[2 * p] == 0;
+        box_culled += out[2 * p + 1] == 0;
+        if (!ray_sets::exact_hit(a.ray, a.v, a.tmax)) continue;
+        ++hits;
+        ASSERT_NE(out[2 * p], 0u) << "the sphere test culls a hit, pair " << p << " tmax " << a.tmax;
+        ASSERT_NE(out[2 * p + 1], 0u) << "the box test culls a hit, pair " << p << " tmax " << a.tmax;
+    }
+    EXPECT_GT(hits, 10000u);
+    EXPECT_GT(sphere_culled, 10000u);
+    EXPECT_GT(box_culled, 10000u);
 }
 
 // Empty children (rays of zero or non-finite direction, the padding of a last node) are left out of a union: a node

@@ -68,6 +68,7 @@ const std::array<HierarchyKindStats, kRayKinds>& GpuRayHierarchy::stats() {
         const std::uint64_t exact = sum(kInfoExact), leaf_pairs = sum(kInfoLeafPairs);
         ks.leaf_pairs += leaf_pairs;
         ks.sphere_tests += word64(w, kTallySphere);
+        ks.box_tests += sum(kInfoBoxTests);
         if (!ks.levels.empty()) {
             ks.levels[0].pairs_in += leaf_pairs;
             ks.levels[0].pairs_out += exact;

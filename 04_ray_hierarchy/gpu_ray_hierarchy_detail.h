@@ -17,12 +17,13 @@ inline constexpr std::uint32_t kMaxRayIndex = 1u << 27;              // RH_RAY_I
 inline constexpr int kMaxRayLevels = 32;                             // rh_cull.comp's level tables
 // rh_info.glsl
 inline constexpr std::uint32_t kInfoWords = 224, kInfoExact = 10, kInfoObjectIn = 12, kInfoObjectOut = 14,
-                               kInfoLevelIn = 16, kInfoLevelOut = 80, kInfoLeafPairs = 144, kInfoStepCount = 160,
+                               kInfoLevelIn = 16, kInfoLevelOut = 80, kInfoLeafPairs = 144, kInfoBoxTests = 146,
+                               kInfoStepCount = 160,
                                kInfoGroupFirst = 8;
 inline constexpr int kMaxSteps = 63;   // rh_info.glsl: RH_INFO_STEP_COUNT slots
-// rh_tally.comp: per ray kind, the 64-bit sums of rh_info's words kInfoExact .. kInfoLeafPairs + 1, then the sphere
+// rh_tally.comp: per ray kind, the 64-bit sums of rh_info's words kInfoExact .. kInfoBoxTests + 1, then the sphere
 // tests and the fold tests.
-inline constexpr std::uint32_t kTallyWords = 144, kTallyGroupPairs = 68, kTallySphere = 136, kTallyFold = 138;
+inline constexpr std::uint32_t kTallyWords = 144, kTallyGroupPairs = 69, kTallySphere = 138, kTallyFold = 140;
 // rh_groups.comp's list [count, (first ray, kind) per group]: the groups read back at once (more take a second read).
 inline constexpr std::uint32_t kGroupsAtOnce = 64;
 

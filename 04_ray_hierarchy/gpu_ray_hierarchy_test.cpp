@@ -187,7 +187,7 @@ struct TraceSetup {
 
 // The stats add up, on one group of rays (one hierarchy): with --objects triangles the top level tests every node
 // with every triangle, each level's pairs come from the survivors above (at most B each), the leaves' pairs get the
-// sphere test and its survivors are the local tests.
+// sphere test, its survivors the box test, and the survivors of both are the local tests.
 TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
     gpu::test_context();
     const TraceSetup setup("cornell");
@@ -225,12 +225,26 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
             EXPECT_GE(k.levels[l - 1].pairs_in, k.levels[l].pairs_out) << "B=" << b << " level " << l;
             node_tests += k.levels[l].pairs_in;
         }
-        // Level 0's pairs are the (ray, triangle) pairs: each gets the sphere test, and those that pass it the
-        // exact test.
+        // Level 0's pairs are the (ray, triangle) pairs: each gets the sphere test, those that pass it the box test,
+        // and those that pass both the exact test.
         EXPECT_EQ(k.sphere_tests, k.levels[0].pairs_in);
         EXPECT_EQ(k.node_tests(), node_tests);
         EXPECT_EQ(k.local_tests, k.levels[0].pairs_out);
-        EXPECT_LE(k.local_tests, k.sphere_tests);
+        EXPECT_LE(k.box_tests, k.sphere_tests);
+        EXPECT_LT(k.local_tests, k.box_tests) << "B=" << b << ": the box test culls pairs the sphere test keeps";
+        // Without the box test, the pairs the sphere test keeps are the exact tests; without both, every leaf pair.
+        for (const auto& [box, sphere] : {std::pair{false, true}, std::pair{false, false}}) {
+            GpuRayHierarchy off;
+            off.options = h.options;
+            off.options.box_test = box;
+            off.options.sphere_test = sphere;
+            off.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+            off.trace({ray_buffer, 0, rays.size(), results, nullptr, wavefront}, false);
+            const HierarchyKindStats& o = off.stats()[2];
+            EXPECT_EQ(o.box_tests, 0u);
+            EXPECT_EQ(o.leaf_pairs, k.leaf_pairs);
+            EXPECT_EQ(o.local_tests, sphere ? k.box_tests : k.leaf_pairs) << "B=" << b << " sphere test " << sphere;
+        }
         EXPECT_EQ(k.brute_force_tests, rays.size() * scene.triangle_count());
         EXPECT_LT(k.local_tests * 10, k.brute_force_tests) << "B=" << b;   // a coherent beam culls well
     }

@@ -247,6 +247,7 @@ void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t
     p.set("rh_group_first", unsigned(in.first + group_.first));
     p.set("rh_batch_first", unsigned(in.first));
     p.set("rh_sphere_test", options.sphere_test ? 1u : 0u);
+    p.set("rh_box_test", options.box_test ? 1u : 0u);
     dispatch_chunk(p, step, count, on_gpu);
 }
 

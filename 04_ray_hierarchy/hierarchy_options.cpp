@@ -29,7 +29,13 @@ void add_hierarchy_options(CLI::App& app, HierarchyOptions& options) {
     app.add_option_function<std::string>(
            "--sphere-test", [&options](const std::string& s) { options.sphere_test = s == "on"; },
            "Test each ray against a triangle's bounding sphere before the exact ray/triangle test: on (default) or "
-           "off (every (ray, triangle) pair the hierarchy leaves gets the exact test, as in the papers)")
+           "off (as in the papers; with --box-test off too, every (ray, triangle) pair the hierarchy leaves gets the "
+           "exact test)")
+        ->check(CLI::IsMember({"on", "off"}));
+    app.add_option_function<std::string>(
+           "--box-test", [&options](const std::string& s) { options.box_test = s == "on"; },
+           "Then test the ray against the triangle's axis-aligned box (tight where a sphere is loose: long, thin or "
+           "large triangles): on (default) or off")
         ->check(CLI::IsMember({"on", "off"}));
 }
 

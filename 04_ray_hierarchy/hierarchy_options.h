@@ -1,5 +1,5 @@
 // Stage 04's command-line options: the shape of the ray hierarchy (branching, levels used), what its top nodes meet
-// (the objects) and the per-ray sphere test. The traversal reads the struct; add_hierarchy_options declares it to
+// (the objects) and the cheap per-ray tests before the exact one. The traversal reads the struct; add_hierarchy_options declares it to
 // the command line (CLI11).
 #pragma once
 
@@ -18,9 +18,10 @@ struct HierarchyOptions {
     std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
     int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
     bool sphere_test = true;         // --sphere-test: each ray against a triangle's sphere before the exact test
+    bool box_test = true;            // --box-test: then against the triangle's box (object_tree.h)
 };
 
-// --branching, --levels, --objects and --sphere-test, written into `options` when parsed.
+// --branching, --levels, --objects, --sphere-test and --box-test, written into `options` when parsed.
 void add_hierarchy_options(CLI::App& app, HierarchyOptions& options);
 
 }  // namespace rt

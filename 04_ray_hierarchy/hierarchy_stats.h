@@ -28,7 +28,8 @@ struct HierarchyKindStats {
     std::vector<HierarchyLevelStats> levels;
     std::uint64_t leaf_pairs = 0;      // (ray, triangle) pairs that reached the leaves (level 0's pairs_in)
     std::uint64_t sphere_tests = 0;    // the per-ray test of those pairs before the exact one (--sphere-test on)
-    std::uint64_t local_tests = 0;     // exact ray/triangle tests at the leaves (the pairs that passed it)
+    std::uint64_t box_tests = 0;       // the second, of the pairs the sphere test kept (--box-test on)
+    std::uint64_t local_tests = 0;     // exact ray/triangle tests at the leaves (the pairs that passed both)
     std::uint64_t fold_tests = 0;      // the closest-hit fold's re-tests (rh_closest.glsl)
     std::uint64_t brute_force_tests = 0;   // rays x triangles
     std::uint64_t node_tests() const;   // every cone+sphere test of the traversal but the leaves' pairs

@@ -157,6 +157,24 @@ bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4
     // END EXERCISE
 }
 
+bool rh_ray_box_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    if (!finite(origin) || !finite(direction) || !(max_abs(direction) > 0.0f)) return false;
+    const glm::vec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
+    const float pad = kRhPad * (max_abs(origin) + std::max(max_abs(lo), max_abs(hi))) + 1e-30f;
+    float t_in = 0.0f, t_out = std::isfinite(tmax) ? tmax : INFINITY;   // NaN: no end, the pair is kept
+    for (int i = 0; i < 3; ++i) {
+        const float near = lo[i] - pad - origin[i], far = hi[i] + pad - origin[i];   // the slab, seen from the origin
+        if (direction[i] == 0.0f) {   // parallel to the slab: inside it for every t, or for none
+            if (near > 0.0f || far < 0.0f) return false;
+            continue;
+        }
+        const float t_a = near / direction[i], t_b = far / direction[i];
+        t_in = std::max(t_in, std::min(t_a, t_b));
+        t_out = std::min(t_out, std::max(t_a, t_b));
+    }
+    return t_in <= t_out * (1.0f + kRhPad) + 1e-30f;
+}
+
 bool rh_split_rays(const RhNode& node, glm::vec4 s) {
     if (node.cone.w >= kRhAllDirections) return true;
     const float distance = glm::length(glm::vec3(s) - glm::vec3(node.sphere));
@@ -166,7 +184,7 @@ bool rh_split_rays(const RhNode& node, glm::vec4 s) {
 
 PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vector<std::vector<RhNode>>& levels,
                              int branching_factor, const std::vector<glm::vec4>& spheres, const ObjectTree& tree,
-                             ObjectMode mode) {
+                             ObjectMode mode, const std::vector<glm::vec3>& triangles) {
     PairTraversal out;
     if (levels.size() < 2 || spheres.empty()) return out;
     const std::size_t branching = std::size_t(branching_factor);
@@ -191,9 +209,15 @@ PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vec
         if (p.level == 0) {
             const RhTraceRay& r = rays[p.index];
             if (triangle) {
+                const std::uint32_t t = p.object & ~kTriangleFlag;
                 ++out.sphere_tests;
-                if (rh_ray_may_hit(r.origin, r.direction, r.tmax, sphere))
-                    out.exact.emplace_back(p.index, p.object & ~kTriangleFlag);
+                if (!rh_ray_may_hit(r.origin, r.direction, r.tmax, sphere)) continue;
+                if (!triangles.empty()) {
+                    ++out.box_tests;
+                    const glm::vec3* v = &triangles[3 * std::size_t(t)];
+                    if (!rh_ray_box_may_hit(r.origin, r.direction, r.tmax, v[0], v[1], v[2])) continue;
+                }
+                out.exact.emplace_back(p.index, t);
                 continue;
             }
             ++out.node_tests;

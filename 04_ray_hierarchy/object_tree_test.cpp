@@ -1,7 +1,7 @@
 // The object tree and the pair traversal on the CPU (object_tree.h): the tree's shape (every triangle in exactly one
 // leaf, every parent sphere holding its children, Morton order), and the traversal's one promise, on the
 // adversarial ray sets of ray_sets.h and on far-moved, tiny and degenerate scenes: no (ray, triangle) pair that the
-// exact test hits is ever culled, by a node test, an object node or the per-ray sphere test.
+// exact test hits is ever culled, by a node test, an object node or the per-ray sphere and box tests.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,8 +97,8 @@ void expect_no_hit_culled(const std::string& what, const std::vector<RhTraceRay>
         for (int levels : {0, 2})
             for (ObjectMode mode : {ObjectMode::triangles, ObjectMode::meshes, ObjectMode::tree}) {
                 const auto hierarchy = rh_build(rh, b, levels);
-                const PairTraversal p =
-                    traverse_pairs(rays, hierarchy, b, spheres, mode == ObjectMode::meshes ? meshes : tree, mode);
+                const PairTraversal p = traverse_pairs(rays, hierarchy, b, spheres,
+                                                       mode == ObjectMode::meshes ? meshes : tree, mode, triangles);
                 const std::set<std::pair<std::uint32_t, std::uint32_t>> reached(p.exact.begin(), p.exact.end());
                 ASSERT_EQ(reached.size(), p.exact.size()) << what << ": a pair reached the exact test twice";
                 for (std::uint32_t i = 0; i < rays.size(); ++i)
@@ -108,7 +108,8 @@ void expect_no_hit_culled(const std::string& what, const std::vector<RhTraceRay>
                                 << what << " " << object_mode_name(mode) << " B=" << b << " levels " << levels
                                 << ": ray " << i << " hits triangle " << t << " but the pair was culled";
                         }
-                EXPECT_LE(p.exact.size(), p.sphere_tests);
+                EXPECT_LE(p.exact.size(), p.box_tests);
+                EXPECT_LE(p.box_tests, p.sphere_tests);
                 if (culled) *culled += rays.size() * spheres.size() - p.exact.size();
             }
 }
@@ -221,6 +222,47 @@ TEST(ObjectTree, RaySphereTestRejectsOnlyWhatNoRayPointReaches) {
     EXPECT_TRUE(rh_ray_may_hit(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), NAN, s));   // NaN keeps the pair
 }
 
+TEST(ObjectTree, RayBoxTestRejectsOnlyWhatNoRayPointReaches) {
+    // A flat, axis-aligned triangle (its box has no depth in z) and a slanted one.
+    const glm::vec3 a(0.0f, 0.0f, 10.0f), b(4.0f, 0.0f, 10.0f), c(0.0f, 4.0f, 10.0f);
+    const glm::vec3 z(0.0f, 0.0f, 1.0f);
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, INFINITY, a, b, c));
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(3.9f, 3.9f, 0.0f), z, INFINITY, a, b, c));   // in the box, not the triangle
+    EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(4.1f, 1.0f, 0.0f), z, INFINITY, a, b, c));  // beside the box
+    EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), -z, INFINITY, a, b, c)); // away from it
+    EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, 9.9f, a, b, c));      // ends before it
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, 10.0f, a, b, c));      // ends on it
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), 2.0f * z, 5.0f, a, b, c)); // t in |d| units
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, NAN, a, b, c));        // NaN keeps the pair
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), 1e-30f * z, INFINITY, a, b, c));   // tiny direction
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), 1e30f * z, INFINITY, a, b, c));    // huge
+    // Parallel to the plane: in it (on the flat box's face) or beside it.
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(-1.0f, 1.0f, 10.0f), glm::vec3(1.0f, 0.0f, 0.0f), INFINITY, a, b, c));
+    EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(-1.0f, 1.0f, 10.1f), glm::vec3(1.0f, 0.0f, 0.0f), INFINITY, a, b, c));
+    // The sphere of a long needle holds a ray the box does not.
+    const glm::vec3 n0(-50.0f, 0.0f, 0.0f), n1(50.0f, 0.01f, 0.0f), n2(50.0f, 0.0f, 0.01f);
+    const glm::vec3 o(0.0f, 20.0f, -5.0f), d(0.0f, 0.0f, 1.0f);
+    EXPECT_TRUE(rh_ray_may_hit(o, d, INFINITY, rh_triangle_sphere(n0, n1, n2)));
+    EXPECT_FALSE(rh_ray_box_may_hit(o, d, INFINITY, n0, n1, n2));
+    // A ray that cannot hit anything.
+    EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), glm::vec3(0.0f), INFINITY, a, b, c));
+    EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(NAN), z, INFINITY, a, b, c));
+    EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), glm::vec3(INFINITY, 0.0f, 1.0f), INFINITY, a, b, c));
+}
+
+// Rays aimed at the vertices and edges of axis-aligned, slanted, needle and point triangles (where a box is flat or
+// the exact test grazes it), near the origin, far from it and tiny: every hit of the exact test passes the box test.
+TEST(ObjectTree, RayBoxTestKeepsEveryGrazingHit) {
+    std::uint64_t hits = 0, culled = 0;
+    for (const ray_sets::AimedRay& a : ray_sets::aimed_rays()) {
+        if (!exact_hit({a.ray.origin, a.ray.direction, a.tmax}, a.v)) continue;
+        ++hits;
+        if (!rh_ray_box_may_hit(a.ray.origin, a.ray.direction, a.tmax, a.v[0], a.v[1], a.v[2])) ++culled;
+    }
+    EXPECT_GT(hits, 10000u);
+    EXPECT_EQ(culled, 0u);
+}
+
 TEST(ObjectTree, TheTreeMeetsFewerPairsThanEveryTriangle) {
     // 4096 small triangles on a grid, a coherent beam: the tree's node and sphere tests are a small fraction of
     // the triangles mode's (where every top node meets every triangle).
@@ -248,6 +290,14 @@ TEST(ObjectTree, TheTreeMeetsFewerPairsThanEveryTriangle) {
     for (const auto& p : dual.exact) a.erase(p);
     for (const auto& p : a) ASSERT_FALSE(exact_hit(rays[p.first], &v[3 * p.second])) << "a hit only the flat mode found";
     EXPECT_LT(10 * (dual.node_tests + dual.sphere_tests), flat.node_tests + flat.sphere_tests);
+    // With the box test the same pairs pass or fewer (the box only ever removes pairs), never a hit.
+    const PairTraversal boxed = traverse_pairs(rays, levels, 4, s, tree, ObjectMode::tree, v);
+    EXPECT_EQ(boxed.box_tests, dual.exact.size());
+    EXPECT_LE(boxed.exact.size(), dual.exact.size());
+    for (const auto& p : dual.exact) {
+        const bool kept = std::count(boxed.exact.begin(), boxed.exact.end(), p) > 0;
+        ASSERT_TRUE(kept || !exact_hit(rays[p.first], &v[3 * p.second])) << "a hit the box test culled";
+    }
 }
 
 }  // namespace

@@ -59,10 +59,11 @@ inline Case make(const std::string& name, int rays, float scale, glm::vec3 centr
 }
 
 // Whether the exact test hits triangle v[0..2] with the ray (either method: the property must hold for both).
-inline bool exact_hit(const RhRay& r, const glm::vec3* v) {
+inline bool exact_hit(const RhRay& r, const glm::vec3* v, float tmax = INFINITY) {
     Ray<float> ray;
     ray.origin = r.origin;
     ray.direction = r.direction;
+    ray.tmax = tmax;
     float t, u, w;
     return intersect_watertight(ray, WatertightRay<float>(r.direction), v[0], v[1], v[2], t, u, w) ||
            intersect_moller(ray, v[0], v[1], v[2], t, u, w);
@@ -80,6 +81,46 @@ inline std::vector<Case> all() {
     coherent_huge.name = "coherent_huge_coordinates";
     cases.push_back(coherent_huge);
     return cases;
+}
+
+// One ray aimed at one triangle's vertex, edge or inside: the cases where a cheap test grazes the exact test's hit.
+struct AimedRay {
+    RhRay ray;
+    float tmax = INFINITY;
+    glm::vec3 v[3];   // the triangle
+};
+
+// Axis-aligned (a box of zero depth), slanted, needle and point triangles near the origin, far from it and tiny;
+// 40 rays at each from some way off, along an axis, along an edge, unbounded or ending beyond the triangle.
+inline std::vector<AimedRay> aimed_rays(unsigned seed = 21) {
+    std::mt19937 g(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), w(0.0f, 1.0f);
+    std::vector<AimedRay> out;
+    for (const auto& [scale, centre] : {std::pair<float, glm::vec3>{1.0f, glm::vec3(0.0f)},
+                                        {100.0f, glm::vec3(4e6f, -3e6f, 1e6f)},
+                                        {1e-5f, glm::vec3(3e-5f)}}) {
+        for (int t = 0; t < 400; ++t) {
+            AimedRay a;
+            const glm::vec3 p = centre + scale * glm::vec3(u(g), u(g), u(g));
+            const glm::vec3 e1 = scale * unit(g), e2 = scale * unit(g);
+            a.v[0] = p;
+            a.v[1] = p + e1;
+            a.v[2] = p + e2;
+            if (t % 4 == 0) a.v[1].z = a.v[2].z = p.z;   // flat in z
+            if (t % 4 == 1) a.v[2] = p + 2.0f * e1;      // a needle
+            if (t % 8 == 2) a.v[1] = a.v[2] = p;         // a point
+            for (int k = 0; k < 40; ++k) {
+                const float s = k % 5 == 0 ? 0.0f : w(g), r = k % 3 == 0 ? 0.0f : w(g) * (1.0f - s);
+                const glm::vec3 target = a.v[0] + s * (a.v[1] - a.v[0]) + r * (a.v[2] - a.v[0]);
+                glm::vec3 d = k % 7 == 0 ? glm::vec3(0.0f, 0.0f, 1.0f) : unit(g);
+                if (k % 11 == 0) d = glm::normalize(a.v[1] - a.v[0] + glm::vec3(0.0f, 0.0f, 1e-3f * scale));
+                a.ray = {target - 3.0f * scale * d, d};
+                a.tmax = k % 6 == 0 ? 3.0f * scale : INFINITY;
+                out.push_back(a);
+            }
+        }
+    }
+    return out;
 }
 
 }  // namespace rt::ray_sets

@@ -178,6 +178,26 @@ bool rh_ray_may_hit(vec3 origin, vec3 direction, float tmax, vec4 s) {
     // END EXERCISE
 }
 
+// The second cheap test (object_tree.cpp: rh_ray_box_may_hit): can the ray pass through the triangle's box for
+// some 0 < t <= tmax? The slab test (Kay & Kajiya 1986), the box padded as the sphere is; a NaN tmax keeps the pair.
+bool rh_ray_box_may_hit(vec3 origin, vec3 direction, float tmax, vec3 a, vec3 b, vec3 c) {
+    if (!rh_finite(origin) || !rh_finite(direction) || !(rh_max_abs(direction) > 0.0)) return false;
+    const vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
+    const float pad = RH_PAD * (rh_max_abs(origin) + max(rh_max_abs(lo), rh_max_abs(hi))) + 1e-30;
+    float t_in = 0.0, t_out = rt_isfinite(tmax) ? tmax : RT_INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        const float near = lo[i] - pad - origin[i], far = hi[i] + pad - origin[i];   // the slab, seen from the origin
+        if (direction[i] == 0.0) {   // parallel to the slab: inside it for every t, or for none
+            if (near > 0.0 || far < 0.0) return false;
+            continue;
+        }
+        const float t_a = near / direction[i], t_b = far / direction[i];
+        t_in = max(t_in, min(t_a, t_b));
+        t_out = min(t_out, max(t_a, t_b));
+    }
+    return t_in <= t_out * (1.0 + RH_PAD) + 1e-30;
+}
+
 // --objects tree: split the rays of a surviving pair when their beam is wider than the object node where it meets
 // it, else the object node (object_tree.h: rh_split_rays). Either choice is exact.
 bool rh_split_rays(RhNode node, vec4 s) {

@@ -5,12 +5,13 @@
 #define RH_INFO_HITS 1u           // the hit list's length (closest hits)
 #define RH_INFO_FOLD 2u           // the fold's "some ray has a next hit" flag
 #define RH_INFO_FOLD_TESTS 4u     // [4 + kind]: the fold's re-tests per ray kind (five kinds: 4..8)
-#define RH_INFO_EXACT 10u         // 64-bit: exact ray/triangle tests (the pairs that passed the sphere test)
+#define RH_INFO_EXACT 10u         // 64-bit: exact ray/triangle tests (the pairs that passed the cheap tests)
 #define RH_INFO_OBJECT_IN 12u     // 64-bit: pairs tested whose object side is an object node
 #define RH_INFO_OBJECT_OUT 14u    // 64-bit: those that survived
 #define RH_INFO_LEVEL_IN 16u      // 64-bit [16 + 2 l]: pairs tested whose ray side is on level l (l < 32)
 #define RH_INFO_LEVEL_OUT 80u     // 64-bit [80 + 2 l]: those that survived (level 0: the exact tests)
 #define RH_INFO_LEAF_PAIRS 144u   // 64-bit: (ray, triangle) pairs given to rh_leaf.comp
+#define RH_INFO_BOX_TESTS 146u    // 64-bit: the box tests of those pairs (--box-test on)
 #define RH_INFO_STEP_COUNT 160u  // [160 + s]: the length of step s's chunk, written by step s - 1's scan (s < 64)
 #define RH_INFO_WORDS 224u
 

@@ -1,8 +1,8 @@
 #version 450 core
-// The leaves: each (ray, triangle) pair of a chunk (the other pairs of the chunk are rh_cull.comp's) gets the cheap
-// per-ray test first, the ray against the triangle's bounding sphere (rh_ray_may_hit; the sphere is computed from
-// the vertices here, as rh_spheres.comp does, so no buffer more is bound; --sphere-test off skips it, as the papers
-// do), and only then the exact ray/triangle test
+// The leaves: each (ray, triangle) pair of a chunk (the other pairs of the chunk are rh_cull.comp's) gets two cheap
+// per-ray tests first, the ray against the triangle's bounding sphere (rh_ray_may_hit; --sphere-test off skips it,
+// as the papers do) and then against its box (rh_ray_box_may_hit; --box-test off skips it), both computed from the
+// vertices here, so no buffer more is bound; and only then the exact ray/triangle test
 // (common/shaders/trace/intersect.glsl, as brute force). Shadow rays (RH_SHADOW): any hit blocks the light. Closest
 // hits: step 1 of rh_closest.glsl. Each work group adds its exact tests to rh_info once (the CPU adds the batch's to
 // the pipeline's test counter, rh_fold.comp mode 6); only the heatmap needs one atomic per test, on the ray's pixel.
@@ -23,14 +23,16 @@ layout(std430, binding = WF_BINDING_RESULTS) buffer Occluded { uint rh_occluded[
 
 uniform uint rh_group_first;    // wf_rays_in index of the group's ray 0
 uniform uint rh_batch_first;    // wf_rays_in index of the batch's ray 0 (results and state are per batch ray)
-uniform uint rh_sphere_test;    // 1: the sphere test first (--sphere-test on); 0: every pair gets the exact test
+uniform uint rh_sphere_test;    // 1: the sphere test first (--sphere-test on); 0: no sphere test
+uniform uint rh_box_test;       // 1: then the box test (--box-test on); 0: no box test
 
-shared uint rh_group_exact, rh_group_leaf_pairs;
+shared uint rh_group_exact, rh_group_leaf_pairs, rh_group_box_tests;
 
 void main() {
     if (gl_LocalInvocationIndex == 0u) {
         rh_group_exact = 0u;
         rh_group_leaf_pairs = 0u;
+        rh_group_box_tests = 0u;
     }
     barrier();
     const uint i = rt_global_index();
@@ -43,7 +45,12 @@ void main() {
         const uint slot = ray_index - rh_batch_first;
         vec3 a, b, c;
         rh_load_triangle(triangle, a, b, c);
-        if (rh_sphere_test == 0u || rh_ray_may_hit(r.origin, r.direction, r.tmax, rh_triangle_sphere(a, b, c))) {
+        bool may_hit = rh_sphere_test == 0u || rh_ray_may_hit(r.origin, r.direction, r.tmax, rh_triangle_sphere(a, b, c));
+        if (may_hit && rh_box_test == 1u) {
+            atomicAdd(rh_group_box_tests, 1u);
+            may_hit = rh_ray_box_may_hit(r.origin, r.direction, r.tmax, a, b, c);
+        }
+        if (may_hit) {
             atomicAdd(rh_group_exact, 1u);
             float t, u, v;
             const bool hit =
@@ -64,7 +71,7 @@ void main() {
 #if defined(COUNT_TESTS) && defined(WATCH_PIXEL)
             wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 1u, 1u);   // --pixel: an exact test, a leaf pair
         } else {
-            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 0u, 1u);   // a leaf pair the sphere test culled
+            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 0u, 1u);   // a leaf pair the sphere or box test culled
 #endif
         }
     }
@@ -72,5 +79,6 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) {
         rh_add64(RH_INFO_EXACT, rh_group_exact);
         rh_add64(RH_INFO_LEAF_PAIRS, rh_group_leaf_pairs);
+        rh_add64(RH_INFO_BOX_TESTS, rh_group_box_tests);
     }
 }

@@ -1,7 +1,7 @@
 #version 450 core
 // The traversal's counts summed on the GPU, read by the CPU once per frame (GpuRayHierarchy::stats()) instead of once
 // per group: rh_tally holds, per ray kind, RH_TALLY_WORDS words of 64-bit sums.
-//   mode 0, after a group: rh_info's group counts (RH_INFO_EXACT .. RH_INFO_LEAF_PAIRS, 64-bit each) are added to the
+//   mode 0, after a group: rh_info's group counts (RH_INFO_EXACT .. RH_INFO_BOX_TESTS, 64-bit each) are added to the
 //          group's kind, the sphere tests too (the leaf pairs, with --sphere-test on), and the exact tests to the
 //          pipeline's test counters (the total and the kind's), as the stage's other tests are;
 //   mode 1, after a batch's fold: its re-tests per ray kind (rh_info[RH_INFO_FOLD_TESTS + kind]).
@@ -13,11 +13,11 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = RH_BINDING_OFFSETS) buffer Tally { uint rh_tally[]; };
 
-// Per kind: [0, 136) the words RH_INFO_EXACT .. RH_INFO_LEAF_PAIRS + 1, then the sphere tests and the fold tests.
+// Per kind: [0, 138) the words RH_INFO_EXACT .. RH_INFO_BOX_TESTS + 1, then the sphere tests and the fold tests.
 #define RH_TALLY_WORDS 144u
-#define RH_TALLY_GROUP_PAIRS 68u     // (RH_INFO_LEAF_PAIRS + 2 - RH_INFO_EXACT) / 2
-#define RH_TALLY_SPHERE 136u
-#define RH_TALLY_FOLD 138u
+#define RH_TALLY_GROUP_PAIRS 69u     // (RH_INFO_BOX_TESTS + 2 - RH_INFO_EXACT) / 2
+#define RH_TALLY_SPHERE 138u
+#define RH_TALLY_FOLD 140u
 #define RH_TALLY_KINDS 5u            // ray kinds (WF_KIND_*; kRayKinds)
 
 uniform uint rh_mode;
