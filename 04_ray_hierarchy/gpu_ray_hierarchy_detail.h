@@ -24,6 +24,8 @@ inline constexpr int kMaxSteps = 63;   // rh_info.glsl: RH_INFO_STEP_COUNT slots
 // rh_tally.comp: per ray kind, the 64-bit sums of rh_info's words kInfoExact .. kInfoBoxTests + 1, then the sphere
 // tests and the fold tests.
 inline constexpr std::uint32_t kTallyWords = 144, kTallyGroupPairs = 69, kTallySphere = 138, kTallyFold = 140;
+// rh_fold.comp: select + step rounds of the closest-hit fold dispatched between two looks at its "more to fold" flag.
+inline constexpr int kFoldRoundsPerRead = 2;
 // rh_groups.comp's list [count, (first ray, kind) per group]: the groups read back at once (more take a second read).
 inline constexpr std::uint32_t kGroupsAtOnce = 64;
 

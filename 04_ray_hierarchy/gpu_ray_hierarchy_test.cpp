@@ -253,9 +253,11 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
 // A batch whose chunks fit one window each is traced without a read-back inside it: the GPU sizes every step's
 // dispatches from the counts it wrote itself (rh_args.comp). Shadow rays of one light (one group): the read-backs are
 // the batch's groups (1: their starts and kinds in one list) and, once the CPU's bound of the pairs (x4 a step)
-// passes the pair capacity, one look at the real count (2), however many steps the traversal takes (a read-back per
-// step before); the group's counts stay on the GPU (rh_tally.comp) until stats() reads them, once (1). With 64-pair
-// buffers the chunks are cut into windows (read-backs), with the same occlusion and counts.
+// passes the pair capacity, one look at the real lengths of the chunk and of its children (1), however many steps
+// the traversal takes (a read-back per step before); the group's counts stay on the GPU (rh_tally.comp) until
+// stats() reads them, once (1). The same rays for closest hits add the fold's one look at its flag after two rounds
+// (its rounds and the select's length stay on the GPU). With 64-pair buffers the chunks are cut into windows
+// (read-backs), with the same occlusion and counts.
 TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
     gpu::test_context();
     const TraceSetup setup("cornell");
@@ -291,7 +293,7 @@ TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
         EXPECT_EQ(h.syncs, trace_syncs + 1) << "and not again while no trace ran";
         EXPECT_GT(h.chunks, 5u) << "steps of the traversal";
         if (capacity == 0) {
-            EXPECT_LE(trace_syncs, 3u) << "the groups (1), one bound check (2)";
+            EXPECT_LE(trace_syncs, 2u) << "the groups (1), one bound check (1)";
             EXPECT_LT(h.syncs, h.chunks);
             reference = occluded;
             reference_tests = h.stats()[1].node_tests();
@@ -301,6 +303,13 @@ TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
             EXPECT_EQ(h.stats()[1].node_tests(), reference_tests);
         }
     }
+    for (gpu::WavefrontRay& r : rays) r.depth_kind = 1u << 16 | 2u;   // reflection rays: closest hits and the fold
+    const gpu::Buffer closest_rays = gpu::Buffer::from(rays);
+    GpuRayHierarchy h;
+    h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+    h.trace({closest_rays, 0, rays.size(), results, nullptr, wavefront}, false);
+    EXPECT_LE(h.syncs, 4u) << "the groups (1), one bound check (1), the hit list's room (1), the fold's flag (1)";
+    EXPECT_GE(h.fold_rounds, 2u);
 }
 
 // More groups than the first read-back of the group list holds (kGroupsAtOnce = 64): shadow rays whose light changes

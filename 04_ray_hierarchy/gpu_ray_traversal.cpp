@@ -115,10 +115,12 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         dispatch_chunk(cull_, step, count, on_gpu);
         const std::size_t groups = (std::size_t(count) + 63) / 64;
         compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);
-        if (!chain) {
-            if (on_gpu) count = read_info(int(slot));
+        if (!chain) {   // the chunk's length (when only the GPU knows it) and its children's, in one read-back
+            const std::vector<std::uint32_t> lengths = info_.download<std::uint32_t>(2, slot);
+            ++syncs;
+            if (on_gpu) count = lengths[0];
             on_gpu = false;
-            total = read_info(int(slot) + 1);
+            total = lengths[1];
         }
         ++chunks;
     }
@@ -276,34 +278,43 @@ void GpuRayHierarchy::prune_hits() {
     std::swap(hits_, hits_tmp_);
 }
 
-// Step 2 of rh_closest.glsl: one listed hit per ray and round, in increasing triangle id, until none is left.
+// Step 2 of rh_closest.glsl: one listed hit per ray and round, in increasing triangle id, until none is left. The
+// rounds run kFoldRoundsPerRead at a time with nothing read back: the select pass is dispatched indirectly for the
+// hit list's length (rh_args.comp), and a round with nothing left to fold changes nothing (no ray has a `next`). Only
+// then is the flag of the last select read: 0 means every ray was folded. Most rays list one hit, so one read per
+// batch is the rule (it was the list's length and then one per round, plus one).
 void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
     std::optional<gpu::GpuTimer::Scope> timed;
     if (timer) timed.emplace(*timer, "rh_local.fold");
     const std::uint32_t n = std::uint32_t(in.count);
-    const std::uint32_t used = read_info(1);
     in.rays.bind(gpu::kWavefrontBindingRaysIn);
     in.results.bind(gpu::kWavefrontBindingResults);
     if (in.tests_per_pixel) in.tests_per_pixel->bind(gpu::kWavefrontBindingTestsPerPixel);
+    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
+    args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
+    args_pass_.set("rh_slot", 1u);   // rh_info.glsl: RH_INFO_HITS, the hit list's length
+    args_pass_.set("rh_args_first", 0u);   // words 0-2: the top step's, never dispatched indirectly
+    args_pass_.dispatch(1);
+    barrier();
     hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
     state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
-    info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
     in.wavefront.set_uniforms(fold_);
     fold_.set("rh_batch_first", unsigned(in.first));
-    for (;;) {
-        const std::uint32_t zero = 0;
-        info_.upload(&zero, 4, 8);
-        fold_.set("rh_mode", 1u);
-        fold_.set("rh_count", used);
-        if (used > 0) fold_.dispatch_threads(used);
-        barrier();
-        if (read_info(2) == 0) break;
-        ++fold_rounds;
-        fold_.set("rh_mode", 2u);
-        fold_.set("rh_count", n);
-        fold_.dispatch_threads(n);
-        barrier();
-    }
+    do {
+        for (int round = 0; round < kFoldRoundsPerRead; ++round) {
+            const std::uint32_t zero = 0;
+            info_.upload(&zero, 4, 8);
+            fold_.set("rh_mode", 1u);
+            fold_.set("rh_count", std::uint32_t(hit_capacity_));   // the shader stops at the list's length
+            fold_.dispatch_indirect(args_, 0);
+            barrier();
+            ++fold_rounds;
+            fold_.set("rh_mode", 2u);
+            fold_.set("rh_count", n);
+            fold_.dispatch_threads(n);
+            barrier();
+        }
+    } while (read_info(2) != 0);
     fold_.set("rh_mode", 3u);
     fold_.set("rh_count", n);
     fold_.dispatch_threads(n);

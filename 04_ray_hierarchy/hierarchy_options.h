@@ -1,6 +1,6 @@
 // Stage 04's command-line options: the shape of the ray hierarchy (branching, levels used), what its top nodes meet
-// (the objects) and the cheap per-ray tests before the exact one. The traversal reads the struct; add_hierarchy_options declares it to
-// the command line (CLI11).
+// (the objects) and the cheap per-ray tests before the exact one. The traversal reads the struct;
+// add_hierarchy_options declares it to the command line (CLI11).
 #pragma once
 
 #include <cstddef>

@@ -227,7 +227,7 @@ TEST(ObjectTree, RayBoxTestRejectsOnlyWhatNoRayPointReaches) {
     const glm::vec3 a(0.0f, 0.0f, 10.0f), b(4.0f, 0.0f, 10.0f), c(0.0f, 4.0f, 10.0f);
     const glm::vec3 z(0.0f, 0.0f, 1.0f);
     EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, INFINITY, a, b, c));
-    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(3.9f, 3.9f, 0.0f), z, INFINITY, a, b, c));   // in the box, not the triangle
+    EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(3.9f, 3.9f, 0.0f), z, INFINITY, a, b, c));   // the box, not the triangle
     EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(4.1f, 1.0f, 0.0f), z, INFINITY, a, b, c));  // beside the box
     EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), -z, INFINITY, a, b, c)); // away from it
     EXPECT_FALSE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, 9.9f, a, b, c));      // ends before it

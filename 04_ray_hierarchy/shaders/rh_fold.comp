@@ -4,7 +4,8 @@
 //   1 select   per listed hit: within the tie range of its ray's closest t and not folded yet -> the lowest such
 //              triangle becomes the ray's `next` (atomicMin); rh_info[2] = 1 if any ray has one;
 //   2 step     per ray: folds `next` as brute force would (tmax = the kept hit's t; replaced only when strictly
-//              closer), counting the test;
+//              closer), counting the test; a ray without a `next` is left as it is, so a round more than needed
+//              changes nothing (the CPU reads the flag only every few rounds);
 //   3 resolve  per ray: the result (WavefrontTraceResult; triangle -1 for a miss);
 //   4 prune    per listed hit: rh_keep[i] = 1 if it is still within the tie range (hits left behind by a closer one
 //              are dropped from the list when it fills up: they can no longer matter).
@@ -27,6 +28,7 @@ uniform uint rh_batch_first;
 void main() {
     const uint i = rt_global_index();
     if (i >= rh_count) return;
+    if (rh_mode == 1u && i >= rh_info[RH_INFO_HITS]) return;   // dispatched indirectly for the list's length
     if (rh_mode == 0u) {
         rh_state[i] = RhRayState(0x7f800000u, 0u, 0xffffffffu, -1, RT_INFINITY, 0.0, 0.0, 0u);
     } else if (rh_mode == 1u) {

@@ -45,7 +45,8 @@ void main() {
         const uint slot = ray_index - rh_batch_first;
         vec3 a, b, c;
         rh_load_triangle(triangle, a, b, c);
-        bool may_hit = rh_sphere_test == 0u || rh_ray_may_hit(r.origin, r.direction, r.tmax, rh_triangle_sphere(a, b, c));
+        bool may_hit =
+            rh_sphere_test == 0u || rh_ray_may_hit(r.origin, r.direction, r.tmax, rh_triangle_sphere(a, b, c));
         if (may_hit && rh_box_test == 1u) {
             atomicAdd(rh_group_box_tests, 1u);
             may_hit = rh_ray_box_may_hit(r.origin, r.direction, r.tmax, a, b, c);
@@ -71,7 +72,7 @@ void main() {
 #if defined(COUNT_TESTS) && defined(WATCH_PIXEL)
             wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 1u, 1u);   // --pixel: an exact test, a leaf pair
         } else {
-            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 0u, 1u);   // a leaf pair the sphere or box test culled
+            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 0u, 1u);   // a leaf pair a cheap test culled
 #endif
         }
     }
