@@ -141,7 +141,7 @@ TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
         for (std::size_t t = 0; t < scene.triangle_count(); ++t)
             spheres.push_back(rh_triangle_sphere(scene.positions[3 * t], scene.positions[3 * t + 1],
                                                  scene.positions[3 * t + 2]));
-        const ObjectTree cpu = build_object_tree(spheres, scene.bounds.lo, scene.bounds.hi);
+        const ObjectTree cpu = build_object_tree(spheres, scene.bounds.lo, scene.bounds.hi, scene.positions);
         ASSERT_EQ(gpu.order, cpu.order) << what;
         ASSERT_EQ(gpu.level_first, cpu.level_first) << what;
         ASSERT_EQ(gpu.level_count, cpu.level_count) << what;
@@ -156,6 +156,8 @@ TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
             ASSERT_EQ(g.first, c.first) << what << " node " << i;
             ASSERT_EQ(g.count, c.count) << what << " node " << i;
             ASSERT_EQ(g.level, c.level) << what << " node " << i;
+            ASSERT_EQ(glm::vec3(g.box_lo), glm::vec3(c.box_lo)) << what << " node " << i;   // min and max: exact
+            ASSERT_EQ(glm::vec3(g.box_hi), glm::vec3(c.box_hi)) << what << " node " << i;
             const float scale = std::max(glm::length(glm::vec3(c.sphere)), c.sphere.w);
             EXPECT_LE(glm::length(glm::vec3(g.sphere) - glm::vec3(c.sphere)), 1e-5f * scale) << what << " node " << i;
             EXPECT_NEAR(g.sphere.w, c.sphere.w, 1e-5f * scale) << what << " node " << i;

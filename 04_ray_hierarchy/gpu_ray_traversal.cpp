@@ -112,6 +112,7 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         cull_.set("rh_group_first", unsigned(in_->first + group_.first));
         cull_.set("rh_branching", b);
         cull_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
+        cull_.set("rh_box_test", options.box_test ? 1u : 0u);
         dispatch_chunk(cull_, step, count, on_gpu);
         const std::size_t groups = (std::size_t(count) + 63) / 64;
         compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);

@@ -18,7 +18,7 @@ struct HierarchyOptions {
     std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
     int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
     bool sphere_test = true;         // --sphere-test: each ray against a triangle's sphere before the exact test
-    bool box_test = true;            // --box-test: then against the triangle's box (object_tree.h)
+    bool box_test = true;            // --box-test: a single ray against a triangle's or object node's box too
 };
 
 // --branching, --levels, --objects, --sphere-test and --box-test, written into `options` when parsed.

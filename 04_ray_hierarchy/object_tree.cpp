@@ -76,7 +76,8 @@ glm::vec4 sphere_union(const std::vector<glm::vec4>& spheres, const std::uint32_
     return sphere_union(kids.data(), kids.size());
 }
 
-ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo, glm::vec3 hi) {
+ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo, glm::vec3 hi,
+                             const std::vector<glm::vec3>& triangles) {
     ObjectTree tree;
     const std::uint32_t n = std::uint32_t(spheres.size());
     tree.order.resize(n);
@@ -95,6 +96,16 @@ ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo
         node.count = std::min(kClusterSize, n - node.first);
         node.level = 1;
         node.sphere = sphere_union(spheres, tree.order.data(), node.first, node.count);
+        if (!triangles.empty()) {
+            node.box_lo = glm::vec4(INFINITY, INFINITY, INFINITY, 0.0f);
+            node.box_hi = glm::vec4(-INFINITY, -INFINITY, -INFINITY, 0.0f);
+            for (std::uint32_t k = 0; k < node.count; ++k)
+                for (int v = 0; v < 3; ++v) {
+                    const glm::vec3 p = triangles[3 * std::size_t(tree.order[node.first + k]) + std::size_t(v)];
+                    node.box_lo = glm::vec4(glm::min(glm::vec3(node.box_lo), p), 0.0f);
+                    node.box_hi = glm::vec4(glm::max(glm::vec3(node.box_hi), p), 0.0f);
+                }
+        }
         tree.nodes.push_back(node);
     }
     // Upper levels, up to a single root.
@@ -110,6 +121,12 @@ ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo
             std::vector<glm::vec4> kids;
             for (std::uint32_t k = 0; k < node.count; ++k) kids.push_back(tree.nodes[node.first + k].sphere);
             node.sphere = sphere_union(kids.data(), kids.size());
+            node.box_lo = glm::vec4(INFINITY, INFINITY, INFINITY, 0.0f);
+            node.box_hi = glm::vec4(-INFINITY, -INFINITY, -INFINITY, 0.0f);
+            for (std::uint32_t k = 0; k < node.count; ++k) {
+                node.box_lo = glm::min(node.box_lo, tree.nodes[node.first + k].box_lo);
+                node.box_hi = glm::max(node.box_hi, tree.nodes[node.first + k].box_hi);
+            }
             tree.nodes.push_back(node);
         }
     }
@@ -158,8 +175,11 @@ bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4
 }
 
 bool rh_ray_box_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    return rh_ray_box_test(origin, direction, tmax, glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c)));
+}
+
+bool rh_ray_box_test(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec3 lo, glm::vec3 hi) {
     if (!finite(origin) || !finite(direction) || !(max_abs(direction) > 0.0f)) return false;
-    const glm::vec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
     const float pad = kRhPad * (max_abs(origin) + std::max(max_abs(lo), max_abs(hi))) + 1e-30f;
     float t_in = 0.0f, t_out = std::isfinite(tmax) ? tmax : INFINITY;   // NaN: no end, the pair is kept
     for (int i = 0; i < 3; ++i) {
@@ -222,6 +242,10 @@ PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vec
             }
             ++out.node_tests;
             if (!rh_ray_may_hit(r.origin, r.direction, r.tmax, sphere)) continue;
+            const ObjectNode& node = tree.nodes[p.object];
+            if (!triangles.empty() && !rh_ray_box_test(r.origin, r.direction, r.tmax, glm::vec3(node.box_lo),
+                                                       glm::vec3(node.box_hi)))
+                continue;
         } else {
             ++out.node_tests;
             if (!rh_may_hit(levels[p.level][p.index], sphere)) continue;

@@ -38,13 +38,17 @@ constexpr std::uint32_t kClusterSize = 4;        // triangles per leaf of the tr
 constexpr std::uint32_t kObjectBranching = 4;    // children per node above the leaves
 constexpr unsigned kMortonAxisBits = 10;         // per axis: 2^30 cells
 
-// One object node, as on the GPU (std430 RhObject, 32 bytes). Level 1 nodes bound triangles: order[first + k] for
+// One object node, as on the GPU (std430 RhObject, 64 bytes). Level 1 nodes bound triangles: order[first + k] for
 // k < count (meshes: the identity order). Level l > 1 nodes bound nodes [first, first + count) of level l - 1.
+// The sphere bounds the children's spheres (for the cone+sphere test of ray nodes); the box (xyz of box_lo, box_hi;
+// unpadded, as rh_ray_box_test pads) bounds the triangles' vertices, for the box test of single rays, which is
+// tighter on long or thin clusters. Mesh objects keep the box of all space (the box test keeps every ray).
 struct ObjectNode {
     glm::vec4 sphere{0.0f};
     std::uint32_t first = 0, count = 0, level = 1, pad = 0;
+    glm::vec4 box_lo{-INFINITY, -INFINITY, -INFINITY, 0.0f}, box_hi{INFINITY, INFINITY, INFINITY, 0.0f};
 };
-static_assert(sizeof(ObjectNode) == 32);
+static_assert(sizeof(ObjectNode) == 64);
 
 struct ObjectTree {
     std::vector<std::uint32_t> order;         // triangle ids in the leaves' order (Morton; identity for meshes)
@@ -65,8 +69,10 @@ glm::vec4 sphere_union(const glm::vec4* spheres, std::size_t count);
 glm::vec4 sphere_union(const std::vector<glm::vec4>& spheres, const std::uint32_t* order, std::uint32_t first,
                        std::uint32_t count);
 
-// The tree over triangles with these bounding spheres (rh_triangle_sphere), in the scene box [lo, hi].
-ObjectTree build_object_tree(const std::vector<glm::vec4>& triangle_spheres, glm::vec3 lo, glm::vec3 hi);
+// The tree over triangles with these bounding spheres (rh_triangle_sphere), in the scene box [lo, hi]; with the
+// triangles' vertices (3 per triangle) the nodes' boxes too, else every box is all space.
+ObjectTree build_object_tree(const std::vector<glm::vec4>& triangle_spheres, glm::vec3 lo, glm::vec3 hi,
+                             const std::vector<glm::vec3>& triangles = {});
 // `meshes`: one level of objects, runs [first, first + count) of triangles in id order.
 ObjectTree mesh_objects(const std::vector<glm::vec4>& triangle_spheres,
                         const std::vector<std::pair<std::uint32_t, std::uint32_t>>& runs);
@@ -86,6 +92,9 @@ bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4
 // of the coordinates' size, the exit by RH_PAD relatively, so that a pair the exact test hits is never culled (its
 // rounding is a few ulps). False for a ray that cannot hit anything, as rh_ray_may_hit; a NaN tmax keeps the pair.
 bool rh_ray_box_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec3 a, glm::vec3 b, glm::vec3 c);
+// The same against the box [lo, hi] (an object node's). Padded by the box's own size, so a node's test keeps every
+// ray its triangles' tests keep: the box holds theirs, and every step of the test is monotone in the box.
+bool rh_ray_box_test(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec3 lo, glm::vec3 hi);
 
 // Which side of a surviving (ray node, object node) pair to split in `tree` mode: the rays when their beam is wider
 // than the object node where it meets it (sphere radius + distance x sin(spread), every direction: always), else the
@@ -105,7 +114,8 @@ struct PairTraversal {
     std::uint64_t sphere_tests = 0;   // rh_ray_may_hit tests of (ray, triangle) pairs
     std::uint64_t box_tests = 0;      // rh_ray_box_may_hit tests of the pairs that passed the sphere's
 };
-// `triangles` (3 vertices each): given, the pairs that pass the sphere test get the box test too (--box-test on).
+// `triangles` (3 vertices each): given, the box tests too (--box-test on): a single ray against an object node's box
+// after its sphere, a (ray, triangle) pair that passes the sphere test against the triangle's box.
 PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vector<std::vector<RhNode>>& levels,
                              int branching, const std::vector<glm::vec4>& triangle_spheres, const ObjectTree& tree,
                              ObjectMode mode, const std::vector<glm::vec3>& triangles = {});

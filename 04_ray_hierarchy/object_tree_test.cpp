@@ -49,7 +49,13 @@ bool exact_hit(const RhTraceRay& r, const glm::vec3* v) {
            intersect_moller(ray, v[0], v[1], v[2], t, u, w);
 }
 
-void expect_shape(const ObjectTree& tree, const std::vector<glm::vec4>& spheres, const std::string& what) {
+// Does box (lo, hi) hold point p, or box (lo2, hi2)?
+bool box_holds(const ObjectNode& n, glm::vec3 p) {
+    return glm::all(glm::lessThanEqual(glm::vec3(n.box_lo), p)) && glm::all(glm::lessThanEqual(p, glm::vec3(n.box_hi)));
+}
+
+void expect_shape(const ObjectTree& tree, const std::vector<glm::vec4>& spheres, const std::string& what,
+                  const std::vector<glm::vec3>& triangles = {}) {
     ASSERT_GE(tree.levels(), 1u) << what;
     EXPECT_EQ(tree.level_count.back(), 1u) << what << ": a single root";
     // Every triangle in exactly one leaf.
@@ -63,6 +69,8 @@ void expect_shape(const ObjectTree& tree, const std::vector<glm::vec4>& spheres,
             const std::uint32_t t = tree.order[n.first + k];
             ++seen[t];
             ASSERT_TRUE(holds(n.sphere, spheres[t]) || !std::isfinite(spheres[t].w)) << what << " leaf " << j;
+            for (std::size_t v = 0; v < (triangles.empty() ? 0 : 3); ++v)
+                ASSERT_TRUE(box_holds(n, triangles[3 * t + v]) || !std::isfinite(spheres[t].w)) << what << " leaf " << j;
         }
     }
     for (std::size_t t = 0; t < seen.size(); ++t) ASSERT_EQ(seen[t], 1) << what << " triangle " << t;
@@ -75,8 +83,12 @@ void expect_shape(const ObjectTree& tree, const std::vector<glm::vec4>& spheres,
             EXPECT_EQ(n.first, next) << what;
             EXPECT_LE(n.count, kObjectBranching);
             next += n.count;
-            for (std::uint32_t k = 0; k < n.count; ++k)
-                ASSERT_TRUE(holds(n.sphere, tree.nodes[n.first + k].sphere)) << what << " level " << l + 1 << " node " << j;
+            for (std::uint32_t k = 0; k < n.count; ++k) {
+                const ObjectNode& child = tree.nodes[n.first + k];
+                ASSERT_TRUE(holds(n.sphere, child.sphere)) << what << " level " << l + 1 << " node " << j;
+                ASSERT_TRUE(box_holds(n, glm::vec3(child.box_lo)) && box_holds(n, glm::vec3(child.box_hi)))
+                    << what << " level " << l + 1 << " node " << j << ": its box holds its children's";
+            }
         }
         EXPECT_EQ(next, tree.level_first[l - 1] + tree.level_count[l - 1]) << what;
     }
@@ -91,8 +103,8 @@ void expect_no_hit_culled(const std::string& what, const std::vector<RhTraceRay>
     for (const RhTraceRay& r : rays) rh.push_back({r.origin, r.direction});
     std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;
     for (std::uint32_t t = 0; t < spheres.size(); t += 7) runs.emplace_back(t, std::min<std::uint32_t>(7, std::uint32_t(spheres.size()) - t));
-    const ObjectTree tree = build_object_tree(spheres, lo, hi), meshes = mesh_objects(spheres, runs);
-    expect_shape(tree, spheres, what);
+    const ObjectTree tree = build_object_tree(spheres, lo, hi, triangles), meshes = mesh_objects(spheres, runs);
+    expect_shape(tree, spheres, what, triangles);
     for (int b : {4, 16})
         for (int levels : {0, 2})
             for (ObjectMode mode : {ObjectMode::triangles, ObjectMode::meshes, ObjectMode::tree}) {
@@ -110,6 +122,18 @@ void expect_no_hit_culled(const std::string& what, const std::vector<RhTraceRay>
                         }
                 EXPECT_LE(p.exact.size(), p.box_tests);
                 EXPECT_LE(p.box_tests, p.sphere_tests);
+                // The boxes change no exact test but the triangle's own box test would: an object node's box holds
+                // its triangles', so it never culls a pair the triangle's box keeps.
+                const PairTraversal spheres_only =
+                    traverse_pairs(rays, hierarchy, b, spheres, mode == ObjectMode::meshes ? meshes : tree, mode);
+                std::set<std::pair<std::uint32_t, std::uint32_t>> expected;
+                for (const auto& [i, t] : spheres_only.exact) {
+                    const glm::vec3* v = &triangles[3 * std::size_t(t)];
+                    if (rh_ray_box_may_hit(rays[i].origin, rays[i].direction, rays[i].tmax, v[0], v[1], v[2]))
+                        expected.insert({i, t});
+                }
+                ASSERT_EQ(reached, expected) << what << " " << object_mode_name(mode) << " B=" << b;
+                EXPECT_LE(p.node_tests, spheres_only.node_tests);
                 if (culled) *culled += rays.size() * spheres.size() - p.exact.size();
             }
 }
@@ -138,7 +162,7 @@ TEST(ObjectTree, EveryTriangleInOneLeafAndEveryParentHoldsItsChildren) {
         const std::vector<glm::vec4> s = spheres_of(c.triangles);
         glm::vec3 lo, hi;
         box_of(c.triangles, lo, hi);
-        expect_shape(build_object_tree(s, lo, hi), s, c.name);
+        expect_shape(build_object_tree(s, lo, hi, c.triangles), s, c.name, c.triangles);
     }
     // Sizes around the cluster and branching factors, and a single triangle.
     std::mt19937 g(5);
@@ -148,7 +172,7 @@ TEST(ObjectTree, EveryTriangleInOneLeafAndEveryParentHoldsItsChildren) {
         const std::vector<glm::vec4> s = spheres_of(v);
         glm::vec3 lo, hi;
         box_of(v, lo, hi);
-        expect_shape(build_object_tree(s, lo, hi), s, std::to_string(n) + " triangles");
+        expect_shape(build_object_tree(s, lo, hi, v), s, std::to_string(n) + " triangles", v);
     }
 }
 
@@ -290,9 +314,9 @@ TEST(ObjectTree, TheTreeMeetsFewerPairsThanEveryTriangle) {
     for (const auto& p : dual.exact) a.erase(p);
     for (const auto& p : a) ASSERT_FALSE(exact_hit(rays[p.first], &v[3 * p.second])) << "a hit only the flat mode found";
     EXPECT_LT(10 * (dual.node_tests + dual.sphere_tests), flat.node_tests + flat.sphere_tests);
-    // With the box test the same pairs pass or fewer (the box only ever removes pairs), never a hit.
-    const PairTraversal boxed = traverse_pairs(rays, levels, 4, s, tree, ObjectMode::tree, v);
-    EXPECT_EQ(boxed.box_tests, dual.exact.size());
+    // With the box tests the same pairs pass or fewer (a box only ever removes pairs), never a hit.
+    const PairTraversal boxed = traverse_pairs(rays, levels, 4, s, build_object_tree(s, lo, hi, v), ObjectMode::tree, v);
+    EXPECT_LE(boxed.box_tests, dual.exact.size());
     EXPECT_LE(boxed.exact.size(), dual.exact.size());
     for (const auto& p : dual.exact) {
         const bool kept = std::count(boxed.exact.begin(), boxed.exact.end(), p) > 0;

@@ -4,9 +4,12 @@
 //   0 codes     per triangle: the 30-bit Morton code of its sphere's centre (cubic cells over the scene box) and
 //               its id, for the shared radix sort (common/gpu/primitives/radix_sort.h), which sorts ids by code,
 //               stably;
-//   1 clusters  per node of level 1: the sphere of triangles rh_order[first, first + kClusterSize);
-//   2 level     per node of an upper level: the sphere of nodes [first, first + kObjectBranching) of the level below.
+//   1 clusters  per node of level 1: the sphere of triangles rh_order[first, first + kClusterSize), and the box of
+//               their vertices;
+//   2 level     per node of an upper level: the sphere and the box of nodes [first, first + kObjectBranching) of the
+//               level below.
 #include "rh_common.glsl"
+#include "rh_triangles.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -71,15 +74,30 @@ void main() {
     o.level = ot_level;
     o.pad = 0u;
     vec4 kids[16];
+    vec3 lo = vec3(RT_INFINITY), hi = vec3(-RT_INFINITY);
     if (ot_mode == 1u) {
         o.first = i * ot_fanout;
         o.count = min(ot_fanout, ot_triangles - o.first);
-        for (uint k = 0u; k < o.count; ++k) kids[k] = rh_spheres[rh_order[o.first + k]];
+        for (uint k = 0u; k < o.count; ++k) {
+            const uint t = rh_order[o.first + k];
+            kids[k] = rh_spheres[t];
+            vec3 a, b, c;
+            rh_load_triangle(t, a, b, c);
+            lo = min(lo, min(a, min(b, c)));
+            hi = max(hi, max(a, max(b, c)));
+        }
     } else {
         o.first = ot_child_first + i * ot_fanout;
         o.count = min(ot_fanout, ot_child_count - i * ot_fanout);
-        for (uint k = 0u; k < o.count; ++k) kids[k] = rh_objects[o.first + k].sphere;
+        for (uint k = 0u; k < o.count; ++k) {
+            const RhObject child = rh_objects[o.first + k];
+            kids[k] = child.sphere;
+            lo = min(lo, child.box_lo.xyz);
+            hi = max(hi, child.box_hi.xyz);
+        }
     }
+    o.box_lo = vec4(lo, 0.0);
+    o.box_hi = vec4(hi, 0.0);
     o.sphere = ot_union(kids, o.count);
     rh_objects[ot_node_first + i] = o;
 }

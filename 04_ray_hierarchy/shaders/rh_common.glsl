@@ -37,9 +37,10 @@ struct RhNode {
 
 // An object node (object_tree.h, ObjectNode). Level 1 bounds triangles rh_order[first + k] (meshes: first + k);
 // level l > 1 bounds object nodes [first, first + count) of level l - 1.
-struct RhObject {
+struct RhObject {   // object_tree.h: ObjectNode
     vec4 sphere;
     uint first, count, level, pad;
+    vec4 box_lo, box_hi;   // its triangles' box (xyz), unpadded; all space for mesh objects
 };
 
 float rh_max_abs(vec3 v) { return max(abs(v.x), max(abs(v.y), abs(v.z))); }
@@ -178,11 +179,10 @@ bool rh_ray_may_hit(vec3 origin, vec3 direction, float tmax, vec4 s) {
     // END EXERCISE
 }
 
-// The second cheap test (object_tree.cpp: rh_ray_box_may_hit): can the ray pass through the triangle's box for
-// some 0 < t <= tmax? The slab test (Kay & Kajiya 1986), the box padded as the sphere is; a NaN tmax keeps the pair.
-bool rh_ray_box_may_hit(vec3 origin, vec3 direction, float tmax, vec3 a, vec3 b, vec3 c) {
+// The second cheap test (object_tree.cpp: rh_ray_box_test): can the ray pass through the box [lo, hi] for some
+// 0 < t <= tmax? The slab test (Kay & Kajiya 1986), the box padded as the sphere is; a NaN tmax keeps the pair.
+bool rh_ray_box_test(vec3 origin, vec3 direction, float tmax, vec3 lo, vec3 hi) {
     if (!rh_finite(origin) || !rh_finite(direction) || !(rh_max_abs(direction) > 0.0)) return false;
-    const vec3 lo = min(a, min(b, c)), hi = max(a, max(b, c));
     const float pad = RH_PAD * (rh_max_abs(origin) + max(rh_max_abs(lo), rh_max_abs(hi))) + 1e-30;
     float t_in = 0.0, t_out = rt_isfinite(tmax) ? tmax : RT_INFINITY;
     for (int i = 0; i < 3; ++i) {
@@ -196,6 +196,11 @@ bool rh_ray_box_may_hit(vec3 origin, vec3 direction, float tmax, vec3 a, vec3 b,
         t_out = min(t_out, max(t_a, t_b));
     }
     return t_in <= t_out * (1.0 + RH_PAD) + 1e-30;
+}
+
+// The ray against triangle (a, b, c)'s box (object_tree.cpp: rh_ray_box_may_hit).
+bool rh_ray_box_may_hit(vec3 origin, vec3 direction, float tmax, vec3 a, vec3 b, vec3 c) {
+    return rh_ray_box_test(origin, direction, tmax, min(a, min(b, c)), max(a, max(b, c)));
 }
 
 // --objects tree: split the rays of a surviving pair when their beam is wider than the object node where it meets

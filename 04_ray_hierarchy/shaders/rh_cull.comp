@@ -1,7 +1,7 @@
 #version 450 core
 // The conservative test of one chunk of candidate pairs (ray side, object side) (rh_pairs.glsl), each on its own
 // levels: a ray node against an object node or a triangle (rh_may_hit), a single ray against an object node
-// (rh_ray_may_hit). A survivor splits one side (object_tree.h): the ray node into its children, or the object node
+// (rh_ray_may_hit, then with --box-test its box: rh_ray_box_test). A survivor splits one side (object_tree.h): the ray node into its children, or the object node
 // into its children (nodes, or a leaf's triangles); a triangle is never split, a single ray neither. (ray, triangle)
 // pairs are not tested here: rh_leaf.comp gives them the sphere test and the exact test. Every split takes one side
 // one level down, so the pairs of one step are equally deep and the (ray, triangle) pairs are all in the last step,
@@ -30,6 +30,7 @@ uniform uint rh_level_nodes[32];   // nodes on ray level l (level 0: the group's
 uniform uint rh_group_first;       // wf_rays_in index of the group's ray 0
 uniform uint rh_branching;
 uniform uint rh_split_larger;      // 1 (--objects tree): split the larger side; 0: the object side first
+uniform uint rh_box_test;          // 1 (--box-test on): a single ray against an object node's box too
 
 shared uint rh_group_sum;
 shared uint rh_level_in[32], rh_level_out[32];
@@ -59,6 +60,10 @@ void main() {
             if (level == 0u) {
                 const WavefrontRay r = wf_rays_in[rh_group_first + index];
                 may_hit = rh_ray_may_hit(r.origin, r.direction, r.tmax, s);
+                if (may_hit && rh_box_test == 1u) {   // an object node: its box too (--box-test)
+                    const RhObject o = rh_objects[p.y];
+                    may_hit = rh_ray_box_test(r.origin, r.direction, r.tmax, o.box_lo.xyz, o.box_hi.xyz);
+                }
             } else {
                 const RhNode node = rh_nodes[rh_level_first[level] + index];
                 may_hit = rh_may_hit(node, s);
