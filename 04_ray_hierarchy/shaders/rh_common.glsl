@@ -181,21 +181,24 @@ bool rh_ray_may_hit(vec3 origin, vec3 direction, float tmax, vec4 s) {
 
 // The second cheap test (object_tree.cpp: rh_ray_box_test): can the ray pass through the box [lo, hi] for some
 // 0 < t <= tmax? The slab test (Kay & Kajiya 1986), the box padded as the sphere is; a NaN tmax keeps the pair.
+// `precise`: evaluated as written in every shader (no fused or reordered operations), so an object node's test in
+// rh_cull.comp keeps every ray its triangles' tests in rh_leaf.comp keep (each step is monotone in the box).
 bool rh_ray_box_test(vec3 origin, vec3 direction, float tmax, vec3 lo, vec3 hi) {
     if (!rh_finite(origin) || !rh_finite(direction) || !(rh_max_abs(direction) > 0.0)) return false;
-    const float pad = RH_PAD * (rh_max_abs(origin) + max(rh_max_abs(lo), rh_max_abs(hi))) + 1e-30;
-    float t_in = 0.0, t_out = rt_isfinite(tmax) ? tmax : RT_INFINITY;
+    precise float pad = RH_PAD * (rh_max_abs(origin) + max(rh_max_abs(lo), rh_max_abs(hi))) + 1e-30;
+    precise float t_in = 0.0, t_out = rt_isfinite(tmax) ? tmax : RT_INFINITY;
     for (int i = 0; i < 3; ++i) {
-        const float near = lo[i] - pad - origin[i], far = hi[i] + pad - origin[i];   // the slab, seen from the origin
+        precise float near = lo[i] - pad - origin[i], far = hi[i] + pad - origin[i];   // the slab, from the origin
         if (direction[i] == 0.0) {   // parallel to the slab: inside it for every t, or for none
             if (near > 0.0 || far < 0.0) return false;
             continue;
         }
-        const float t_a = near / direction[i], t_b = far / direction[i];
+        precise float t_a = near / direction[i], t_b = far / direction[i];
         t_in = max(t_in, min(t_a, t_b));
         t_out = min(t_out, max(t_a, t_b));
     }
-    return t_in <= t_out * (1.0 + RH_PAD) + 1e-30;
+    precise float t_end = t_out * (1.0 + RH_PAD) + 1e-30;
+    return t_in <= t_end;
 }
 
 // The ray against triangle (a, b, c)'s box (object_tree.cpp: rh_ray_box_may_hit).
