@@ -192,7 +192,7 @@ bool rh_ray_box_test(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec
         t_in = std::max(t_in, std::min(t_a, t_b));
         t_out = std::min(t_out, std::max(t_a, t_b));
     }
-    return t_in <= t_out * (1.0f + kRhPad) + 1e-30f;
+    return !(t_in > t_out * (1.0f + kRhPad) + 1e-30f);   // a NaN keeps the pair
 }
 
 bool rh_split_rays(const RhNode& node, glm::vec4 s) {

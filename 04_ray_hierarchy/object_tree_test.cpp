@@ -258,6 +258,8 @@ TEST(ObjectTree, RayBoxTestRejectsOnlyWhatNoRayPointReaches) {
     EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, 10.0f, a, b, c));      // ends on it
     EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), 2.0f * z, 5.0f, a, b, c)); // t in |d| units
     EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), z, NAN, a, b, c));        // NaN keeps the pair
+    EXPECT_TRUE(rh_ray_box_test(glm::vec3(1.0f, 1.0f, 0.0f), z, INFINITY, glm::vec3(NAN), glm::vec3(4.0f)));   // so
+    EXPECT_TRUE(rh_ray_box_test(glm::vec3(1.0f, 1.0f, 0.0f), z, INFINITY, glm::vec3(-INFINITY), glm::vec3(INFINITY)));
     EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), 1e-30f * z, INFINITY, a, b, c));   // tiny direction
     EXPECT_TRUE(rh_ray_box_may_hit(glm::vec3(1.0f, 1.0f, 0.0f), 1e30f * z, INFINITY, a, b, c));    // huge
     // Parallel to the plane: in it (on the flat box's face) or beside it.

@@ -198,7 +198,7 @@ bool rh_ray_box_test(vec3 origin, vec3 direction, float tmax, vec3 lo, vec3 hi) 
         t_out = min(t_out, max(t_a, t_b));
     }
     precise float t_end = t_out * (1.0 + RH_PAD) + 1e-30;
-    return t_in <= t_end;
+    return !(t_in > t_end);   // a NaN keeps the pair
 }
 
 // The ray against triangle (a, b, c)'s box (object_tree.cpp: rh_ray_box_may_hit).
