@@ -102,9 +102,11 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     compiled_for_ = d;
 }
 
-std::uint32_t GpuRayHierarchy::read_info(int index) {
+std::uint32_t GpuRayHierarchy::read_info(int index) { return read_info(index, 1)[0]; }
+
+std::vector<std::uint32_t> GpuRayHierarchy::read_info(int first, int count) {
     ++syncs;
-    return info_.download_value<std::uint32_t>(index);
+    return info_.download<std::uint32_t>(std::size_t(count), std::size_t(first));
 }
 
 std::string GpuRayHierarchy::phase(const char* name) const {

@@ -98,7 +98,8 @@ private:
     void fold(const gpu::BatchTraceInputs& in);
     void set_source(const gpu::Program& p, const Source& s) const;
     void step_buffers(int step, std::size_t pairs);
-    std::uint32_t read_info(int index);
+    std::uint32_t read_info(int index);   // one word of rh_info, in one read-back (counted in syncs)
+    std::vector<std::uint32_t> read_info(int first, int count);   // words [first, first + count), in one
     std::string phase(const char* name) const;
 
     gpu::ShaderDefines compiled_for_;   // the wavefront defines the programs were compiled with

@@ -117,8 +117,7 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         const std::size_t groups = (std::size_t(count) + 63) / 64;
         compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);
         if (!chain) {   // the chunk's length (when only the GPU knows it) and its children's, in one read-back
-            const std::vector<std::uint32_t> lengths = info_.download<std::uint32_t>(2, slot);
-            ++syncs;
+            const std::vector<std::uint32_t> lengths = read_info(int(slot), 2);
             if (on_gpu) count = lengths[0];
             on_gpu = false;
             total = lengths[1];
@@ -283,7 +282,7 @@ void GpuRayHierarchy::prune_hits() {
 // rounds run kFoldRoundsPerRead at a time with nothing read back: the select pass is dispatched indirectly for the
 // hit list's length (rh_args.comp), and a round with nothing left to fold changes nothing (no ray has a `next`). Only
 // then is the flag of the last select read: 0 means every ray was folded. Most rays list one hit, so one read per
-// batch is the rule (it was the list's length and then one per round, plus one).
+// batch is the rule.
 void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
     std::optional<gpu::GpuTimer::Scope> timed;
     if (timer) timed.emplace(*timer, "rh_local.fold");

@@ -96,15 +96,16 @@ ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo
         node.count = std::min(kClusterSize, n - node.first);
         node.level = 1;
         node.sphere = sphere_union(spheres, tree.order.data(), node.first, node.count);
-        if (!triangles.empty()) {
-            node.box_lo = glm::vec4(INFINITY, INFINITY, INFINITY, 0.0f);
-            node.box_hi = glm::vec4(-INFINITY, -INFINITY, -INFINITY, 0.0f);
+        if (!triangles.empty()) {   // the box of the cluster's vertices (ot_build.comp mode 1)
+            glm::vec3 box_lo(INFINITY), box_hi(-INFINITY);
             for (std::uint32_t k = 0; k < node.count; ++k)
-                for (int v = 0; v < 3; ++v) {
-                    const glm::vec3 p = triangles[3 * std::size_t(tree.order[node.first + k]) + std::size_t(v)];
-                    node.box_lo = glm::vec4(glm::min(glm::vec3(node.box_lo), p), 0.0f);
-                    node.box_hi = glm::vec4(glm::max(glm::vec3(node.box_hi), p), 0.0f);
+                for (std::size_t v = 0; v < 3; ++v) {
+                    const glm::vec3 p = triangles[3 * std::size_t(tree.order[node.first + k]) + v];
+                    box_lo = glm::min(box_lo, p);
+                    box_hi = glm::max(box_hi, p);
                 }
+            node.box_lo = glm::vec4(box_lo, 0.0f);
+            node.box_hi = glm::vec4(box_hi, 0.0f);
         }
         tree.nodes.push_back(node);
     }

@@ -9,7 +9,6 @@
 #include <random>
 #include <set>
 
-#include "common/trace/intersect.h"
 #include "object_tree.h"
 #include "ray_hierarchy.h"
 #include "ray_sets.h"
@@ -40,16 +39,10 @@ bool holds(glm::vec4 outer, glm::vec4 inner) {
 
 // Every (ray, triangle) pair the exact test hits (either method, the ray's tmax) must reach the exact test.
 bool exact_hit(const RhTraceRay& r, const glm::vec3* v) {
-    Ray<float> ray;
-    ray.origin = r.origin;
-    ray.direction = r.direction;
-    ray.tmax = r.tmax;
-    float t, u, w;
-    return intersect_watertight(ray, WatertightRay<float>(r.direction), v[0], v[1], v[2], t, u, w) ||
-           intersect_moller(ray, v[0], v[1], v[2], t, u, w);
+    return ray_sets::exact_hit({r.origin, r.direction}, v, r.tmax);
 }
 
-// Does box (lo, hi) hold point p, or box (lo2, hi2)?
+// Does node n's box hold point p?
 bool box_holds(const ObjectNode& n, glm::vec3 p) {
     return glm::all(glm::lessThanEqual(glm::vec3(n.box_lo), p)) && glm::all(glm::lessThanEqual(p, glm::vec3(n.box_hi)));
 }
