@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <system_error>
 
@@ -13,7 +17,9 @@
 #include "common/trace/shading.h"
 #include "input_error.h"
 
-#ifndef RT_PORTABLE
+#ifdef RT_PORTABLE
+#include <stb/stb_image.h>
+#else
 #include <OpenImageIO/imageio.h>
 #endif
 
@@ -61,11 +67,24 @@ void check_size(const std::string& file, long long width, long long height) {
                          std::to_string(kMaxEnvironmentTexels) + " texels (256 MiB as RGBA float)");
 }
 
+#ifdef RT_PORTABLE
+// The texels stb_image decodes from bytes (nullptr and its reason when it cannot).
+std::vector<float> stb_texels(const std::string& file, const std::vector<unsigned char>& bytes, int& width,
+                              int& height, int& channels) {
+    const int size = bytes.size() > std::size_t(INT32_MAX) ? INT32_MAX : int(bytes.size());
+    float* texels = stbi_loadf_from_memory(bytes.data(), size, &width, &height, &channels, 0);
+    if (!texels) refuse(file, std::string("cannot read its texels: ") + stbi_failure_reason());
+    std::vector<float> values(texels, texels + std::size_t(width) * std::size_t(height) * std::size_t(channels));
+    stbi_image_free(texels);
+    return values;
+}
+#else
 std::string first_line(std::string text) {
     const std::size_t end = text.find('\n');
     if (end != std::string::npos) text.resize(end);
     return text.empty() ? "unknown error" : text;
 }
+#endif
 
 }  // namespace
 
@@ -113,9 +132,35 @@ std::shared_ptr<const Environment> load_environment(const std::string& file, flo
     check_extension(file);
     check_regular_file(file);
 #ifdef RT_PORTABLE
-    (void)rotation_degrees;
-    (void)intensity;
-    refuse(file, "this portable build reads no .hdr/.exr (it has no OpenImageIO)");
+    // Radiance .hdr through stb_image (Debian's libstb, which the portable build carries anyway). Its RGBE decoding
+    // is Ward's, as OpenImageIO's is, so the texels are the same floats (portable.* renders the environment golden).
+    std::string ext = std::filesystem::path(file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".exr") refuse(file, "this portable build reads no .exr (it has no OpenImageIO): use a .hdr");
+    std::ifstream in(file, std::ios::binary);
+    std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) refuse(file, "cannot be read");
+    const int size = bytes.size() > std::size_t(INT32_MAX) ? INT32_MAX : int(bytes.size());
+    if (!stbi_is_hdr_from_memory(bytes.data(), size)) refuse(file, "is not a Radiance HDR image");
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_memory(bytes.data(), size, &width, &height, &channels))   // the size first: nothing absurd
+        refuse(file, std::string("not a readable image: ") + stbi_failure_reason());   // is allocated
+    check_size(file, width, height);
+    // stb reads zeros past the end of a truncated file instead of failing, and a zero run length never ends its
+    // scanline (a hang). So decode it twice, followed by 0xFF bytes, then by 0xFE bytes, enough of them to finish
+    // the image even as flat RGBE (4 a texel): neither run ever stops, a complete file never reads past its end and
+    // decodes the same both times, and a truncated one reads different run lengths, mantissas or exponents.
+    const std::size_t original = bytes.size(), padding = std::size_t(width) * std::size_t(height) * 4 + 65536;
+    bytes.resize(original + padding, 0xFF);
+    const std::vector<float> values = stb_texels(file, bytes, width, height, channels);
+    std::fill(bytes.begin() + std::ptrdiff_t(original), bytes.end(), 0xFE);
+    const std::vector<float> padded = stb_texels(file, bytes, width, height, channels);
+    if (padded.size() != values.size() ||
+        !std::equal(values.begin(), values.end(), padded.begin(),
+                    [](float x, float y) { return std::memcmp(&x, &y, sizeof x) == 0; }))
+        refuse(file, "is truncated: it ends before its last scanline");
+    return std::make_shared<const Environment>(
+        make_environment(file, width, height, channels, values, rotation_degrees, intensity));
 #else
     auto in = OIIO::ImageInput::open(file);
     if (!in) refuse(file, "not a readable image: " + first_line(OIIO::geterror()));
