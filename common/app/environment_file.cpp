@@ -68,7 +68,7 @@ void check_size(const std::string& file, long long width, long long height) {
 }
 
 #ifdef RT_PORTABLE
-// The texels stb_image decodes from bytes (nullptr and its reason when it cannot).
+// The texels stb_image decodes from bytes (refused, with stb's reason, when it cannot decode them).
 std::vector<float> stb_texels(const std::string& file, const std::vector<unsigned char>& bytes, int& width,
                               int& height, int& channels) {
     const int size = bytes.size() > std::size_t(INT32_MAX) ? INT32_MAX : int(bytes.size());
@@ -137,7 +137,16 @@ std::shared_ptr<const Environment> load_environment(const std::string& file, flo
     std::string ext = std::filesystem::path(file).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (ext == ".exr") refuse(file, "this portable build reads no .exr (it has no OpenImageIO): use a .hdr");
+    // The largest file a map within kMaxEnvironmentTexels can be (flat RGBE, 4 bytes a texel, and a header): a larger
+    // one is refused before it is read into memory.
+    const std::uintmax_t largest = std::uintmax_t(kMaxEnvironmentTexels) * 4 + (1u << 20);
+    std::error_code size_error;
+    if (const std::uintmax_t bytes_on_disk = std::filesystem::file_size(file, size_error);
+        !size_error && bytes_on_disk > largest)
+        refuse(file, "is " + std::to_string(bytes_on_disk) + " bytes: larger than any .hdr of at most " +
+                         std::to_string(kMaxEnvironmentTexels) + " texels");
     std::ifstream in(file, std::ios::binary);
+    if (!in) refuse(file, "cannot be opened: " + std::string(std::strerror(errno)));
     std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) refuse(file, "cannot be read");
     const int size = bytes.size() > std::size_t(INT32_MAX) ? INT32_MAX : int(bytes.size());
