@@ -15,6 +15,8 @@ import tempfile
 import numpy as np
 import OpenImageIO as oiio
 
+from golden_cases import last_frame_suffix
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 THRESHOLD, FAIL_FRACTION = 0.016, 0.01   # tests/image_compare.cpp's defaults
 
@@ -52,11 +54,7 @@ def write_png(rgb, path):
 
 def actual_image(build, stage, name, args):
     """The frame golden.<stage>.<name> compared (tests/run_golden.cmake: the last of --frames N)."""
-    folder = os.path.join(build, "test-output", "golden", stage)
-    if "--frames" in args:
-        last = int(args[args.index("--frames") + 1]) - 1
-        return os.path.join(folder, f"{name}_{last:04d}.exr")
-    return os.path.join(folder, f"{name}.exr")
+    return os.path.join(build, "test-output", "golden", stage, f"{name}{last_frame_suffix(args)}.exr")
 
 
 

@@ -38,10 +38,16 @@ std::string number(double v) {
     return out.str();
 }
 
-// Only .hdr and .exr: the two float formats equirectangular maps come in (an 8-bit PNG holds no radiance).
-void check_extension(const std::string& file) {
+// The file's extension in lower case (".hdr" for "sky.HDR").
+std::string lower_extension(const std::string& file) {
     std::string ext = std::filesystem::path(file).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+// Only .hdr and .exr: the two float formats equirectangular maps come in (an 8-bit PNG holds no radiance).
+void check_extension(const std::string& file) {
+    const std::string ext = lower_extension(file);
     if (ext != ".hdr" && ext != ".exr") refuse(file, "not a .hdr or .exr file");
 }
 
@@ -69,10 +75,14 @@ void check_size(const std::string& file, long long width, long long height) {
 
 #ifdef RT_PORTABLE
 // The texels stb_image decodes from bytes (refused, with stb's reason, when it cannot decode them).
+// stb_image takes an int length: a longer buffer is read as its first INT32_MAX bytes.
+int stb_length(const std::vector<unsigned char>& bytes) {
+    return bytes.size() > std::size_t(INT32_MAX) ? INT32_MAX : int(bytes.size());
+}
+
 std::vector<float> stb_texels(const std::string& file, const std::vector<unsigned char>& bytes, int& width,
                               int& height, int& channels) {
-    const int size = bytes.size() > std::size_t(INT32_MAX) ? INT32_MAX : int(bytes.size());
-    float* texels = stbi_loadf_from_memory(bytes.data(), size, &width, &height, &channels, 0);
+    float* texels = stbi_loadf_from_memory(bytes.data(), stb_length(bytes), &width, &height, &channels, 0);
     if (!texels) refuse(file, std::string("cannot read its texels: ") + stbi_failure_reason());
     std::vector<float> values(texels, texels + std::size_t(width) * std::size_t(height) * std::size_t(channels));
     stbi_image_free(texels);
@@ -134,9 +144,7 @@ std::shared_ptr<const Environment> load_environment(const std::string& file, flo
 #ifdef RT_PORTABLE
     // Radiance .hdr through stb_image (Debian's libstb, which the portable build carries anyway). Its RGBE decoding
     // is Ward's, as OpenImageIO's is, so the texels are the same floats (portable.* renders the environment golden).
-    std::string ext = std::filesystem::path(file).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".exr") refuse(file, "this portable build reads no .exr (it has no OpenImageIO): use a .hdr");
+    if (lower_extension(file) == ".exr") refuse(file, "this portable build reads no .exr (it has no OpenImageIO): use a .hdr");
     // The largest file a map within kMaxEnvironmentTexels can be (flat RGBE, 4 bytes a texel, and a header): a larger
     // one is refused before it is read into memory.
     const std::uintmax_t largest = std::uintmax_t(kMaxEnvironmentTexels) * 4 + (1u << 20);
@@ -149,10 +157,9 @@ std::shared_ptr<const Environment> load_environment(const std::string& file, flo
     if (!in) refuse(file, "cannot be opened: " + std::string(std::strerror(errno)));
     std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) refuse(file, "cannot be read");
-    const int size = bytes.size() > std::size_t(INT32_MAX) ? INT32_MAX : int(bytes.size());
-    if (!stbi_is_hdr_from_memory(bytes.data(), size)) refuse(file, "is not a Radiance HDR image");
+    if (!stbi_is_hdr_from_memory(bytes.data(), stb_length(bytes))) refuse(file, "is not a Radiance HDR image");
     int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_memory(bytes.data(), size, &width, &height, &channels))   // the size first: nothing absurd
+    if (!stbi_info_from_memory(bytes.data(), stb_length(bytes), &width, &height, &channels))   // the size first: nothing absurd
         refuse(file, std::string("not a readable image: ") + stbi_failure_reason());   // is allocated
     check_size(file, width, height);
     // stb reads zeros past the end of a truncated file instead of failing, and a zero run length never ends its
