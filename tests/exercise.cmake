@@ -1,6 +1,9 @@
 # The course's grading (scripts/exercise, scripts/grade, scripts/mutants; the table tests/exercises.txt):
 #  - grading.exercise_table_matches_tests: every pattern of the table matches a test of this build, every marked
 #    exercise has a line, every line a marked exercise (a renamed test cannot drop out of grading);
+#  - grading.unit_tests_batched_like_ctest: scripts/grade runs GoogleTest cases one process per binary; every case
+#    gets the verdict CTest gives it, a failure its assertion's text, and a crash or a missing report no pass
+#    (tests/check_grade_batches.py);
 #  - exercise.each_stage_builds_and_fails_its_grading: each stage's student copy holds no answer, builds, and is
 #    graded "not attempted"; a wrong answer fails with its assertion's text and the report loads in a browser;
 #  - mutants.every_wrong_answer_fails (only with -DRT_MUTANTS=ON, label "mutants"; 88 min on 2 cores from scratch): every
@@ -13,6 +16,9 @@ endif()
 add_test(NAME grading.exercise_table_matches_tests
          COMMAND ${PROJECT_SOURCE_DIR}/scripts/grade --check-table --build-dir ${CMAKE_BINARY_DIR})
 set_tests_properties(grading.exercise_table_matches_tests PROPERTIES LABELS "exercise")
+add_test(NAME grading.unit_tests_batched_like_ctest
+         COMMAND ${RT_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/check_grade_batches.py --build-dir ${CMAKE_BINARY_DIR})
+set_tests_properties(grading.unit_tests_batched_like_ctest PROPERTIES LABELS "exercise" TIMEOUT 600)
 
 string(REPLACE ";" "|" stages "${RT_STAGES}")
 add_test(NAME exercise.each_stage_builds_and_fails_its_grading
