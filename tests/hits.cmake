@@ -23,6 +23,16 @@ function(rt_add_hits_tests stage)
     return()
   endif()
   string(REPLACE ";" "|" bounds "${bounds}")
+  # The shader folders the reference may read: common's and those of the stages up to it (run_hits_case.cmake keys
+  # its cached render on them).
+  set(shader_folders ${CMAKE_BINARY_DIR}/shaders/common)
+  foreach(s IN LISTS RT_STAGES)
+    list(APPEND shader_folders ${CMAKE_BINARY_DIR}/shaders/${s})
+    if(s STREQUAL reference)
+      break()
+    endif()
+  endforeach()
+  string(REPLACE ";" "|" shader_folders "${shader_folders}")
   foreach(entry IN LISTS RT_GOLDEN_CASES)
     string(REPLACE "|" ";" fields "${entry}")
     list(POP_FRONT fields name scene)
@@ -33,6 +43,8 @@ function(rt_add_hits_tests stage)
                      -DSAME_IMAGE=$<NOT:$<STREQUAL:${reference},01_naive>>
                      -DCOMPARE_HITS=$<TARGET_FILE:compare_hits> -DCOMPARE=$<TARGET_FILE:image_compare>
                      -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/hits/${stage}
+                     -DREFERENCE_CACHE=${CMAKE_BINARY_DIR}/test-output/hits/reference-cache
+                     "-DREFERENCE_SHADERS=${shader_folders}"
                      -P ${CMAKE_CURRENT_SOURCE_DIR}/run_hits_case.cmake)
     # compare_hits never passes an empty dump: a stage that does not record its hits fails here.
     set_tests_properties(hits.${stage}.${name} PROPERTIES LABELS "hits;hits-${stage}")
