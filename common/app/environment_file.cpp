@@ -64,7 +64,8 @@ void check_regular_file(const std::string& file) {
 }
 
 void check_size(const std::string& file, long long width, long long height) {
-    if (width <= 0 || height <= 0) refuse(file, "has no texels (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    if (width <= 0 || height <= 0)
+        refuse(file, "has no texels (" + std::to_string(width) + "x" + std::to_string(height) + ")");
     if (width > kMaxEnvironmentSide || height > kMaxEnvironmentSide)
         refuse(file, std::to_string(width) + "x" + std::to_string(height) + " is too large: at most " +
                          std::to_string(kMaxEnvironmentSide) + " texels a side");
@@ -144,7 +145,8 @@ std::shared_ptr<const Environment> load_environment(const std::string& file, flo
 #ifdef RT_PORTABLE
     // Radiance .hdr through stb_image (Debian's libstb, which the portable build carries anyway). Its RGBE decoding
     // is Ward's, as OpenImageIO's is, so the texels are the same floats (portable.* renders the environment golden).
-    if (lower_extension(file) == ".exr") refuse(file, "this portable build reads no .exr (it has no OpenImageIO): use a .hdr");
+    if (lower_extension(file) == ".exr")
+        refuse(file, "this portable build reads no .exr (it has no OpenImageIO): use a .hdr");
     // The largest file a map within kMaxEnvironmentTexels can be (flat RGBE, 4 bytes a texel, and a header): a larger
     // one is refused before it is read into memory.
     const std::uintmax_t largest = std::uintmax_t(kMaxEnvironmentTexels) * 4 + (1u << 20);
@@ -159,8 +161,9 @@ std::shared_ptr<const Environment> load_environment(const std::string& file, flo
     if (in.bad()) refuse(file, "cannot be read");
     if (!stbi_is_hdr_from_memory(bytes.data(), stb_length(bytes))) refuse(file, "is not a Radiance HDR image");
     int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_memory(bytes.data(), stb_length(bytes), &width, &height, &channels))   // the size first: nothing absurd
-        refuse(file, std::string("not a readable image: ") + stbi_failure_reason());   // is allocated
+    // The size first, so that nothing absurd is allocated.
+    if (!stbi_info_from_memory(bytes.data(), stb_length(bytes), &width, &height, &channels))
+        refuse(file, std::string("not a readable image: ") + stbi_failure_reason());
     check_size(file, width, height);
     // stb reads zeros past the end of a truncated file instead of failing, and a zero run length never ends its
     // scanline (a hang). So decode it twice, followed by 0xFF bytes, then by 0xFE bytes, enough of them to finish
