@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--t-ulps", options.t_ulps, "Largest difference of t, in ulps, for the same ray and triangle")
         ->capture_default_str();
+    app.add_option("--point-ulps", options.point_ulps,
+                   "Compare t at the hit point instead: within this many ulps of the largest coordinate of origin "
+                   "and hit point (hit_compare.h); replaces --t-ulps");
     app.add_option("--primary-fraction", options.primary_fraction,
                    "Fraction of primary rays that may differ (their pixel sample's tree is then excluded)")
         ->capture_default_str()->check(CLI::Range(0.0, 1.0));

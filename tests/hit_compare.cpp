@@ -62,7 +62,8 @@ enum class Outcome { Match, DifferentRay, DifferentTriangle, TBeyond };
 Outcome compare_pair(const HitRecord& a, const HitRecord& b, const HitCompareOptions& options) {
     if (!same_ray(a, b, options.ray_ulps)) return Outcome::DifferentRay;
     if (a.triangle != b.triangle) return Outcome::DifferentTriangle;
-    if (ulp_distance(a.t, b.t) > options.t_ulps) return Outcome::TBeyond;
+    if (options.point_ulps ? !same_hit_point(a, a.t, b.t, *options.point_ulps) : ulp_distance(a.t, b.t) > options.t_ulps)
+        return Outcome::TBeyond;
     return Outcome::Match;
 }
 
@@ -89,6 +90,21 @@ std::uint64_t ulp_distance(float a, float b) {
     };
     const std::int64_t d = ordered(a) - ordered(b);
     return std::uint64_t(d < 0 ? -d : d);
+}
+
+bool same_hit_point(const HitRecord& a, float ta, float tb, std::uint32_t ulps) {
+    if (ulps == 0 || ta == tb) return std::bit_cast<std::uint32_t>(ta) == std::bit_cast<std::uint32_t>(tb);
+    if (!std::isfinite(ta) || !std::isfinite(tb)) return false;
+    double scale = 0.0, largest_step = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double o = a.origin[i], d = a.direction[i];
+        scale = std::max({scale, std::fabs(o), std::fabs(o + double(ta) * d)});
+        largest_step = std::max(largest_step, std::fabs(d));
+    }
+    // The points differ by |ta - tb| times the direction's largest component (computed in double: exact enough).
+    const float s = float(scale);
+    const double allowed = double(ulps) * double(std::nextafter(s, INFINITY) - s);
+    return std::fabs(double(ta) - double(tb)) * largest_step <= allowed;
 }
 
 HitComparison compare_hits(std::vector<HitRecord> a, std::vector<HitRecord> b, const HitCompareOptions& options) {
@@ -146,9 +162,10 @@ HitComparison compare_hits(std::vector<HitRecord> a, std::vector<HitRecord> b, c
                 break;
             case Outcome::TBeyond:
                 c.t_beyond++;
-                example(4, "t beyond " + std::to_string(options.t_ulps) + " ulps (" +
-                               std::to_string(ulp_distance(x->t, y->t)) + "): " + describe(r) + "  A: " +
-                               describe_hit(*x) + "  B: " + describe_hit(*y));
+                example(4, (options.point_ulps ? "hit point beyond " + std::to_string(*options.point_ulps) + " ulps"
+                                               : "t beyond " + std::to_string(options.t_ulps) + " ulps") +
+                               " (t " + std::to_string(ulp_distance(x->t, y->t)) + " ulps apart): " + describe(r) +
+                               "  A: " + describe_hit(*x) + "  B: " + describe_hit(*y));
                 break;
         }
     });
@@ -179,10 +196,11 @@ std::string HitComparison::report(const HitCompareOptions& options) const {
     s += line;
     std::snprintf(line, sizeof line,
                   "other rays compared %llu: only in A %llu, only in B %llu, different ray (> %u ulps) %llu, "
-                  "different triangle %llu, t beyond %u ulps %llu (allowed %.4g%%)\n",
+                  "different triangle %llu, %s beyond %u ulps %llu (allowed %.4g%%)\n",
                   (unsigned long long)compared, (unsigned long long)only_a, (unsigned long long)only_b,
                   options.ray_ulps, (unsigned long long)different_ray, (unsigned long long)different_triangle,
-                  options.t_ulps, (unsigned long long)t_beyond, 100.0 * options.fraction);
+                  options.point_ulps ? "hit point" : "t", options.point_ulps.value_or(options.t_ulps),
+                  (unsigned long long)t_beyond, 100.0 * options.fraction);
     s += line;
     for (const std::string& e : examples) s += "  " + e + "\n";
     s += passed(options) ? "PASS\n" : "FAIL\n";

@@ -96,6 +96,40 @@ TEST(HitCompare, TAndRayAreComparedWithinTheUlpBound) {
     EXPECT_TRUE(compare_hits(scene_dump(), b, options).passed(options));
 }
 
+// A hit 0.0075 along a ray from x = 0.27: t's ulps are tiny, the point's are those of 0.27. --point-ulps measures the
+// difference there (a GPU's t differed by 55 ulps of t and 1 ulp of the point); 0 still means t bit for bit.
+TEST(HitCompare, PointUlpsMeasureTAtTheHitPointInUnitsOfItsCoordinates) {
+    HitRecord a = ray(0, 2, RayKind::Reflection, 7, 0.0075f);
+    a.origin[0] = 0.27f;
+    a.origin[2] = 0.0f;
+    a.direction[0] = 0.6f;
+    a.direction[2] = -0.8f;
+    HitRecord b = a;
+    b.t = ulps_above(a.t, 55);
+    const float point_ulp = std::nextafter(0.2745f, INFINITY) - 0.2745f;   // of the largest coordinate, x
+    ASSERT_LE(double(b.t - a.t) * 0.8, double(point_ulp));
+    EXPECT_TRUE(same_hit_point(a, a.t, b.t, 1));
+    EXPECT_FALSE(same_hit_point(a, a.t, b.t, 0));
+    EXPECT_TRUE(same_hit_point(a, a.t, a.t, 0));
+    b.t = a.t + 3.0f * point_ulp / 0.8f;   // 3 ulps of the point apart (t's step along z, the largest direction)
+    EXPECT_FALSE(same_hit_point(a, a.t, b.t, 2));
+    EXPECT_TRUE(same_hit_point(a, a.t, b.t, 4));
+    b.t = NAN;
+    EXPECT_FALSE(same_hit_point(a, a.t, b.t, 64));
+
+    HitCompareOptions options;
+    options.point_ulps = 1;
+    std::vector<HitRecord> dump_a{ray(0, 1, RayKind::Primary, 3, 1.5f), a};
+    std::vector<HitRecord> dump_b{ray(0, 1, RayKind::Primary, 3, 1.5f), a};
+    dump_b[1].t = ulps_above(a.t, 55);
+    EXPECT_TRUE(compare_hits(dump_a, dump_b, options).passed(options));
+    options.t_ulps = 54;   // not used with point_ulps
+    options.point_ulps.reset();
+    const HitComparison c = compare_hits(dump_a, dump_b, options);
+    EXPECT_EQ(c.t_beyond, 1u);
+    EXPECT_FALSE(c.passed(options));
+}
+
 TEST(HitCompare, ADifferingPrimaryExcludesItsTreeWithinThePrimaryFraction) {
     std::vector<HitRecord> b = scene_dump();
     b[0].triangle = 9;                                      // pixel 0 sees another triangle (a shared edge) ...

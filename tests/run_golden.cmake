@@ -61,10 +61,12 @@ endif()
 # The frame's counts (its stats): the rays of each kind, and the work (ray/triangle tests; the grid's cells and
 # pairs in 03; the node tests, leaf pairs and exact tests per ray kind in 04 and 05). They are exact, as the hits
 # are: a traversal that tests too much, counts one test per ray, or spawns a ray too many changes them, even where
-# the image does not change. tests/golden/<stage>/<name>.counts holds the reference ("key value" lines). The ray
-# counts are compared on every driver; the work only on the renderer the references were made on (Mesa llvmpipe
-# for the GPU stages: another driver rasterizes another G-buffer neighbourhood, so stage 02-05's primary pass may
-# test other triangles).
+# the image does not change. tests/golden/<stage>/<name>.counts holds the reference ("key value" lines). All of
+# them are compared on the renderer the references were made on (Mesa llvmpipe for the GPU stages). On another
+# driver only the primary ray counts are: its rasterizer fills another G-buffer neighbourhood, so stage 02-05's
+# primary pass may test other triangles and a few primaries hit another triangle, and its division and square
+# roots round otherwise, so a few paths turn otherwise (an NVIDIA H200 cast 1 shadow and 1 reflection ray more of
+# 21,660 on `far`: docs/gpu-nvidia.md). There, 03-05's counts are held to 02's by hits.<stage>.* (the same rays).
 set(counts_file ${OUT_DIR}/${NAME}.counts)
 set(reference_counts ${GOLDEN})
 string(REGEX REPLACE "\\.png$" ".counts" reference_counts "${GOLDEN}")
@@ -109,7 +111,7 @@ if(update_counts)
   message(STATUS "wrote ${reference_counts}")
 endif()
 # The counts of a .counts file ("key value" lines) that this renderer compares, as two lists: all of them on
-# llvmpipe, the ray counts only elsewhere (another driver's G-buffer may test other triangles).
+# llvmpipe, the primary ray counts only elsewhere (above).
 function(compared_counts file keys_var values_var)
   file(STRINGS ${file} lines)
   set(keys "")
@@ -118,7 +120,7 @@ function(compared_counts file keys_var values_var)
     if(line MATCHES "^([^ ]+) (.*)$")
       set(key ${CMAKE_MATCH_1})
       set(value ${CMAKE_MATCH_2})
-      if(reference_renderer OR key MATCHES "^rays\\.")
+      if(reference_renderer OR key MATCHES "^rays\\.(primary|rasterized)$")
         list(APPEND keys ${key})
         list(APPEND values ${value})
       endif()
@@ -156,7 +158,8 @@ if(OWN_REFERENCE AND NOT update_counts)
     message(FATAL_ERROR "${STAGE_NAME} ${SCENE}: the frame's counts differ from ${reference_counts}:${wrong}")
   endif()
   if(NOT reference_renderer)
-    message(STATUS "${renderer}: ray counts compared; the work counts are llvmpipe's, not compared here")
+    message(STATUS "${renderer}: primary ray counts compared; the secondary ray and work counts are llvmpipe's, "
+                   "not compared here. This frame's:\n${counts}${work}")
   endif()
 endif()
 if(update_counts AND NOT update)
