@@ -1,8 +1,7 @@
 """scripts/grade_report.py - the report of scripts/grade: each scene's images (reference, actual, difference x10,
-tests-per-pixel heatmap on one shared scale) and metrics, the HTML page, and the headless-browser check that the page
+tests-per-pixel heatmap on the stage's one scale) and metrics, the HTML page, and the headless-browser check that the page
 loads. scripts/grade decides the verdicts; this module only draws them.
 """
-import concurrent.futures
 import html
 import json
 import os
@@ -86,50 +85,32 @@ def grade_scene(build, stage, name, scene, args, passed, out):
     return entry
 
 
-def render_heatmap(build, stage, scene, args, path, scale_max=0):
-    """Renders the scene's tests-per-pixel heatmap into path (on a scale from 0 to scale_max, or to its own most
-    tests when 0); returns (its most tests per pixel, None) or (None, the stage's first error line)."""
-    exe = os.path.join(build, "bin", stage)
-    with tempfile.TemporaryDirectory() as tmp:
-        extra = ["--heatmap-max", str(scale_max)] if scale_max > 0 else []
-        r = subprocess.run([exe, "--scene", scene, "--width", "160", "--height", "120", "--quiet",
-                            "--out", os.path.join(tmp, "image.png"), "--heatmap", os.path.join(tmp, "heat.png"),
-                            "--stats", os.path.join(tmp, "stats.json")] + extra + args,
-                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        frames = sorted(f for f in os.listdir(tmp) if f.startswith("heat"))
-        if r.returncode != 0 or not frames:
-            return None, (r.stderr.strip().splitlines() or [f"exit {r.returncode}"])[0]
-        shutil.copyfile(os.path.join(tmp, frames[-1]), path)
-        with open(os.path.join(tmp, "stats.json")) as f:
-            return int(json.load(f).get("heatmap", {}).get("max", 0)), None
-
-
 def add_heatmaps(build, report, staging, scenes_args):
-    """Every scene's heatmap, all on one scale from 0 to the most tests any pixel of the report took (so they
-    compare colour for colour); a scene whose heatmap cannot be made says why."""
-    scenes = [(stage, sc) for stage, st in report["stages"].items() for sc in st["scenes"]]
-    path = {id(sc): os.path.join(staging, f"{stage}/{sc['name']}_heatmap.png") for stage, sc in scenes}
-    own = {}
-    # The renders run side by side, one a core (each is a process of its own).
-    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-        first = {id(sc): pool.submit(render_heatmap, build, stage, sc["scene"], scenes_args[sc["name"]], path[id(sc)])
-                 for stage, sc in scenes}
-        for stage, sc in scenes:
-            most, error = first[id(sc)].result()
-            if error:
-                sc["heatmap_error"] = error
-            else:
-                own[id(sc)] = most
-        top = max(own.values(), default=0)
-        # Again on the shared scale, each scene whose own top is lower.
-        again = [pool.submit(render_heatmap, build, stage, sc["scene"], scenes_args[sc["name"]], path[id(sc)], top)
-                 for stage, sc in scenes if id(sc) in own and own[id(sc)] != top and top > 0]
-        for f in again:
-            f.result()
-    for stage, sc in scenes:
-        if id(sc) in own:
-            sc["images"]["tests per pixel (0 to %d)" % top] = f"{stage}/{sc['name']}_heatmap.png"
-    report["heatmap_scale_max"] = top
+    """Every scene's heatmap: the one its golden test drew from the frame it compared (tests/run_golden.cmake), so
+    grading renders nothing more. A stage's heatmaps share one scale, from 0 to the most tests any pixel of the
+    stage's references took (a frame above that takes the top colour), so they compare colour for colour; a scene
+    without one says why."""
+    for stage, st in report["stages"].items():
+        folder = os.path.join(build, "test-output", "golden", stage)
+        for sc in st["scenes"]:
+            name = sc["name"]
+            drawn = os.path.join(folder, f"{name}_heatmap{last_frame_suffix(scenes_args[name])}.png")
+            why = os.path.join(folder, f"{name}_heatmap.txt")   # the stage's reason when it cannot draw one
+            if os.path.exists(why):
+                with open(why) as f:
+                    sc["heatmap_error"] = (f.read().strip().splitlines() or ["the stage cannot draw it"])[0]
+                continue
+            if not os.path.exists(drawn):
+                sc["heatmap_error"] = f"golden.{stage}.{name} drew none (it did not render)"
+                continue
+            try:
+                with open(os.path.join(folder, f"{name}.json")) as f:
+                    top = int(json.load(f)["heatmap"]["scale_max"])
+            except (OSError, ValueError, KeyError, TypeError) as e:
+                sc["heatmap_error"] = f"golden.{stage}.{name}'s stats give no heatmap scale ({e})"
+                continue
+            shutil.copyfile(drawn, os.path.join(staging, f"{stage}/{name}_heatmap.png"))
+            sc["images"][f"tests per pixel (0 to {top})"] = f"{stage}/{name}_heatmap.png"
 
 
 def page(report):
