@@ -1,7 +1,6 @@
 # See tests/portable.cmake. Builds the portable stages and checks their shared-library closure with ldd.
 string(REPLACE "|" ";" TARGETS "${TARGETS}")
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE} -B ${BUILD} -DRT_PORTABLE=ON -DCMAKE_BUILD_TYPE=Release
-                RESULT_VARIABLE rc OUTPUT_QUIET)
+execute_process(COMMAND ${SOURCE}/scripts/configure ${BUILD} -DRT_PORTABLE=ON RESULT_VARIABLE rc OUTPUT_QUIET)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "configuring the portable build failed")
 endif()
