@@ -39,6 +39,10 @@ function(rt_add_golden_test)
     set(own_reference 1)
   endif()
   string(REPLACE ";" "|" args "${G_ARGS}")   # "|"-separated: a ";" would split the test command
+  set(dump_hits 0)   # the GPU stages' golden frames also record their hits, for hits.<stage>.<name>
+  if(own_reference AND G_STAGE IN_LIST RT_GPU_STAGES)
+    set(dump_hits 1)
+  endif()
   set(rendered_in "")
   if(G_REUSE_GOLDEN_FRAME)
     set(rendered_in ${CMAKE_BINARY_DIR}/test-output/golden/${G_STAGE})
@@ -48,7 +52,8 @@ function(rt_add_golden_test)
                    -DNAME=${G_NAME} -DGOLDEN=${PROJECT_SOURCE_DIR}/tests/golden/${G_REFERENCE_STAGE}/${G_REFERENCE_NAME}.png
                    -DOWN_REFERENCE=${own_reference}
                    -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/${G_PREFIX}/${G_STAGE} -DCOMPARE=$<TARGET_FILE:image_compare>
-                   "-DARGS=${args}" -DRENDERED_IN=${rendered_in} -P ${CMAKE_CURRENT_SOURCE_DIR}/run_golden.cmake)
+                   "-DARGS=${args}" -DRENDERED_IN=${rendered_in} -DDUMP_HITS=${dump_hits}
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/run_golden.cmake)
   set_tests_properties(${G_PREFIX}.${G_STAGE}.${G_NAME} PROPERTIES LABELS "${G_PREFIX};${G_PREFIX}-${G_STAGE};${G_LABELS}")
   if(own_reference)
     set_tests_properties(${G_PREFIX}.${G_STAGE}.${G_NAME} PROPERTIES FIXTURES_SETUP frame.${G_STAGE}.${G_NAME})

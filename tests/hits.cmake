@@ -1,6 +1,8 @@
 # Exact cross-stage checks (tests/hit_compare.h; README, "Exact hit checks"): one test per GPU stage of
 # tests/stages.txt and scene of tests/golden/scenes.txt, hits.<stage>.<scene>, labelled "hits" and "hits-<stage>".
-# Both stages render the scene at 80x60 with --dump-hits; compare_hits matches the dumps ray by ray.
+# The stage's frame and hits are those golden.<stage>.<scene> rendered (160x120, --dump-hits; a CTest fixture, so the
+# scene is rendered once for both); the reference renders it the same way, once per build (its render is kept), and
+# compare_hits matches the dumps ray by ray.
 #   02_raster_hybrid against 01_naive (brute force on the CPU), two checks:
 #   - its tracing: every ray 02 traced, traced again by 01's brute force from the same origin and direction
 #     (retrace_hits) must hit the same triangle (shadow rays: the same answer), the hit points within 64 ulps of their
@@ -70,11 +72,15 @@ function(rt_add_hits_tests stage)
                      -DSAME_IMAGE=$<NOT:$<STREQUAL:${reference},01_naive>>
                      -DCOMPARE_HITS=$<TARGET_FILE:compare_hits> -DCOMPARE=$<TARGET_FILE:image_compare>
                      -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/hits/${stage}
+                     -DRENDERED_IN=${CMAKE_BINARY_DIR}/test-output/golden/${stage}
                      -DREFERENCE_CACHE=${CMAKE_BINARY_DIR}/test-output/hits/reference-cache
                      "-DREFERENCE_SHADERS=${shader_folders}"
                      -P ${CMAKE_CURRENT_SOURCE_DIR}/run_hits_case.cmake)
     # compare_hits never passes an empty dump: a stage that does not record its hits fails here.
-    set_tests_properties(hits.${stage}.${name} PROPERTIES LABELS "hits;hits-${stage}")
+    # The stage's frame is golden.<stage>.<name>'s (it records its hits): CTest runs that first, and when it fails
+    # this test is not run and counts as failed.
+    set_tests_properties(hits.${stage}.${name} PROPERTIES LABELS "hits;hits-${stage}"
+                         FIXTURES_REQUIRED frame.${stage}.${name})
   endforeach()
 endfunction()
 

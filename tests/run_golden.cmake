@@ -56,6 +56,7 @@ else()
   # lines of tests/golden/<stage>/*.counts; a frame above it takes the top colour there), so the report's heatmaps
   # compare colour for colour.
   set(heatmap "")
+  set(dump "")
   if(OWN_REFERENCE)
     get_filename_component(golden_dir ${GOLDEN} DIRECTORY)
     file(GLOB stage_counts ${golden_dir}/*.counts)
@@ -75,17 +76,25 @@ else()
     if(scale GREATER 0)
       list(APPEND heatmap --heatmap-max ${scale})
     endif()
+    # DUMP_HITS (the GPU stages): every ray and its hit too, which hits.<stage>.<name> compares (tests/hits.cmake).
+    if(DUMP_HITS)
+      file(GLOB stale ${render_dir}/${NAME}.hits ${render_dir}/${NAME}_[0-9][0-9][0-9][0-9].hits)
+      if(stale)
+        file(REMOVE ${stale})
+      endif()
+      set(dump --dump-hits ${render_dir}/${NAME}.hits)
+    endif()
   endif()
   file(REMOVE ${render_dir}/${NAME}_heatmap.txt)
   execute_process(COMMAND ${STAGE} --scene ${SCENE} --width 160 --height 120 --quiet --out ${image}
-                          --stats ${render_dir}/${NAME}.json ${heatmap} ${ARGS}
+                          --stats ${render_dir}/${NAME}.json ${heatmap} ${dump} ${ARGS}
                   RESULT_VARIABLE rc ERROR_VARIABLE err)
   # A stage that cannot draw this scene's heatmap says so (04 and 05 with cut-outs: the leaf pass would need more
   # storage blocks than GL guarantees) and renders nothing: the frame again without it, and the reason for the report.
   if(rc EQUAL 2 AND heatmap AND err MATCHES "--heatmap: not available")
     file(WRITE ${render_dir}/${NAME}_heatmap.txt "${err}")
     execute_process(COMMAND ${STAGE} --scene ${SCENE} --width 160 --height 120 --quiet --out ${image}
-                            --stats ${render_dir}/${NAME}.json ${ARGS}
+                            --stats ${render_dir}/${NAME}.json ${dump} ${ARGS}
                     RESULT_VARIABLE rc ERROR_VARIABLE err)
   endif()
   if(err)

@@ -1,8 +1,9 @@
-# One hits.<stage>.<scene> test (tests/hits.cmake): render with the stage and its reference with --dump-hits, then
-# compare the dumps with compare_hits and BOUNDS; with SAME_IMAGE=1 the images must also be equal (threshold 0).
-# With RETRACE_EXE, the stage's rays are also traced again by it (retrace_hits) and compared with RETRACE_BOUNDS on
-# every driver, while the comparison with the reference's own render is asserted on llvmpipe only (hits.cmake says
-# why). With "--frames N" in ARGS the last frame is compared.
+# One hits.<stage>.<scene> test (tests/hits.cmake): the stage's frame and hit dump are the ones golden.<stage>.<scene>
+# rendered (RENDERED_IN, a CTest fixture: 160x120, --dump-hits); its reference renders the scene the same way (kept
+# in REFERENCE_CACHE), and compare_hits compares the dumps with BOUNDS; with SAME_IMAGE=1 the images must also be
+# equal (threshold 0). With RETRACE_EXE, the stage's rays are also traced again by it (retrace_hits) and compared
+# with RETRACE_BOUNDS on every driver, while the comparison with the reference's own render is asserted on llvmpipe
+# only (hits.cmake says why). With "--frames N" in ARGS the last frame is compared.
 string(REPLACE "|" ";" ARGS "${ARGS}")
 string(REPLACE "|" ";" BOUNDS "${BOUNDS}")
 file(MAKE_DIRECTORY ${OUT_DIR})
@@ -36,7 +37,7 @@ function(reference_key out)
       string(APPEND key ";${shader}=${h}")
     endforeach()
   endforeach()
-  string(APPEND key ";${SCENE};${ARGS}")
+  string(APPEND key ";${SCENE};${size};${ARGS};exr")
   foreach(arg IN LISTS ARGS)
     if(EXISTS "${arg}" AND NOT IS_DIRECTORY "${arg}")
       file(SHA256 ${arg} h)
@@ -50,57 +51,55 @@ function(reference_key out)
   set(${out} ${key} PARENT_SCOPE)
 endfunction()
 
-foreach(side stage reference)
-  set(exe ${EXE})
-  set(base ${OUT_DIR}/${NAME}.${side})
-  set(${side}_hits ${base}${suffix}.hits)
-  set(${side}_png ${base}${suffix}.png)
-  file(REMOVE ${base}${suffix}.hits ${base}${suffix}.png)
-  if(side STREQUAL "reference")
-    set(exe ${REFERENCE_EXE})
-    get_filename_component(reference_name ${REFERENCE_EXE} NAME)
-    reference_key(key)
-    set(cached ${REFERENCE_CACHE}/${reference_name}.${NAME}.${key})
-    if(EXISTS ${cached}.hits AND EXISTS ${cached}.png)
-      file(COPY_FILE ${cached}.hits ${reference_hits})
-      file(COPY_FILE ${cached}.png ${reference_png})
-      message(STATUS "${reference_name} on ${SCENE}: its render of an earlier run (the same binary, shaders, scene)")
-      continue()
-    endif()
-  endif()
-  set(stats "")
-  if(side STREQUAL "stage")
-    set(stats --stats ${base}.json)
-  endif()
-  execute_process(COMMAND ${exe} --scene ${SCENE} --width 80 --height 60 --quiet --dump-hits ${base}.hits
-                          --out ${base}.png ${stats} ${ARGS}
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${exe} failed on ${SCENE} (exit ${rc}):\n${out}\n${err}")
-  endif()
-  if(side STREQUAL "reference")
-    # Into the cache under names of this process, then renamed (atomic: tests running beside this one may read
-    # it); the renders of earlier keys for this scene go.
-    file(GLOB stale ${REFERENCE_CACHE}/${reference_name}.${NAME}.*)
-    file(MAKE_DIRECTORY ${REFERENCE_CACHE})
-    string(RANDOM LENGTH 12 tag)
-    file(COPY_FILE ${reference_hits} ${cached}.hits.${tag}.tmp)
-    file(COPY_FILE ${reference_png} ${cached}.png.${tag}.tmp)
-    list(FILTER stale EXCLUDE REGEX "\\.${key}\\.")
-    if(stale)
-      file(REMOVE ${stale})
-    endif()
-    file(RENAME ${cached}.hits.${tag}.tmp ${cached}.hits)
-    file(RENAME ${cached}.png.${tag}.tmp ${cached}.png)
+set(size --width 160 --height 120)   # run_golden.cmake's
+set(stage_hits ${RENDERED_IN}/${NAME}${suffix}.hits)
+set(stage_image ${RENDERED_IN}/${NAME}${suffix}.exr)
+set(stage_stats ${RENDERED_IN}/${NAME}.json)
+foreach(f IN ITEMS ${stage_hits} ${stage_image} ${stage_stats})
+  if(NOT EXISTS ${f})
+    message(FATAL_ERROR "no ${f}: golden.<stage>.${NAME} renders it (it did not, or failed)")
   endif()
 endforeach()
+
+get_filename_component(reference_name ${REFERENCE_EXE} NAME)
+set(base ${OUT_DIR}/${NAME}.reference)
+set(reference_hits ${base}${suffix}.hits)
+set(reference_image ${base}${suffix}.exr)
+file(REMOVE ${reference_hits} ${reference_image})
+reference_key(key)
+set(cached ${REFERENCE_CACHE}/${reference_name}.${NAME}.${key})
+if(EXISTS ${cached}.hits AND EXISTS ${cached}.exr)
+  file(COPY_FILE ${cached}.hits ${reference_hits})
+  file(COPY_FILE ${cached}.exr ${reference_image})
+  message(STATUS "${reference_name} on ${SCENE}: its render of an earlier run (the same binary, shaders, scene)")
+else()
+  execute_process(COMMAND ${REFERENCE_EXE} --scene ${SCENE} ${size} --quiet --dump-hits ${base}.hits
+                          --out ${base}.exr ${ARGS}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${REFERENCE_EXE} failed on ${SCENE} (exit ${rc}):\n${out}\n${err}")
+  endif()
+  # Into the cache under names of this process, then renamed (atomic: tests running beside this one may read it);
+  # the renders of earlier keys for this scene go.
+  file(GLOB stale ${REFERENCE_CACHE}/${reference_name}.${NAME}.*)
+  file(MAKE_DIRECTORY ${REFERENCE_CACHE})
+  string(RANDOM LENGTH 12 tag)
+  file(COPY_FILE ${reference_hits} ${cached}.hits.${tag}.tmp)
+  file(COPY_FILE ${reference_image} ${cached}.exr.${tag}.tmp)
+  list(FILTER stale EXCLUDE REGEX "\\.${key}\\.")
+  if(stale)
+    file(REMOVE ${stale})
+  endif()
+  file(RENAME ${cached}.hits.${tag}.tmp ${cached}.hits)
+  file(RENAME ${cached}.exr.${tag}.tmp ${cached}.exr)
+endif()
 
 set(asserted TRUE)
 if(RETRACE_EXE)
   string(REPLACE "|" ";" RETRACE_BOUNDS "${RETRACE_BOUNDS}")
   set(base ${OUT_DIR}/${NAME}.retraced)
   file(REMOVE ${base}${suffix}.hits)
-  execute_process(COMMAND ${RETRACE_EXE} --rays ${stage_hits} --scene ${SCENE} --width 80 --height 60 --quiet
+  execute_process(COMMAND ${RETRACE_EXE} --rays ${stage_hits} --scene ${SCENE} ${size} --quiet
                           --dump-hits ${base}.hits ${ARGS}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -113,7 +112,7 @@ if(RETRACE_EXE)
                         "(compare_hits exit ${rc})")
   endif()
   # The renderer, from the stage's stats: the path-by-path comparison holds where the GPU rounds like the CPU.
-  file(READ ${OUT_DIR}/${NAME}.stage.json stats_json)
+  file(READ ${stage_stats} stats_json)
   string(JSON renderer ERROR_VARIABLE json_error GET "${stats_json}" renderer)
   if(json_error OR NOT renderer MATCHES "llvmpipe")
     set(asserted FALSE)
@@ -128,7 +127,7 @@ elseif(NOT rc EQUAL 0)
                  "path drift apart (tests/hits.cmake); its tracing passed above")
 endif()
 if(SAME_IMAGE)
-  execute_process(COMMAND ${COMPARE} ${stage_png} ${reference_png} --threshold 0 --fail-fraction 0 --name ${NAME}
+  execute_process(COMMAND ${COMPARE} ${stage_image} ${reference_image} --threshold 0 --fail-fraction 0 --name ${NAME}
                           --diff-dir ${OUT_DIR} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "the image of ${EXE} differs from ${REFERENCE_EXE}'s on ${SCENE} (threshold 0)")
