@@ -2,6 +2,7 @@
 tests/run_golden.cmake do (scripts/grade, scripts/grade_report.py, scripts/gpu-check).
 """
 import os
+import re
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -15,6 +16,20 @@ def golden_scenes():
             if fields:
                 scenes.append((fields[0], fields[1], fields[2:]))
     return scenes
+
+
+def golden_size():
+    """(width, height) every golden frame is rendered at: RT_GOLDEN_WIDTH and RT_GOLDEN_HEIGHT of tests/golden.cmake,
+    read from there so the scripts cannot drift from the tests."""
+    size = {}
+    with open(os.path.join(ROOT, "tests", "golden.cmake")) as f:
+        for line in f:
+            m = re.match(r"^set\(RT_GOLDEN_(WIDTH|HEIGHT) ([0-9]+)\)$", line.strip())
+            if m:
+                size[m.group(1)] = int(m.group(2))
+    if set(size) != {"WIDTH", "HEIGHT"}:
+        raise ValueError("tests/golden.cmake: no set(RT_GOLDEN_WIDTH N) and set(RT_GOLDEN_HEIGHT N) lines")
+    return size["WIDTH"], size["HEIGHT"]
 
 
 def last_frame_suffix(args):

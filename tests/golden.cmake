@@ -7,6 +7,11 @@ target_include_directories(image_compare PRIVATE ${PROJECT_SOURCE_DIR})
 target_link_libraries(image_compare PRIVATE OpenImageIO::OpenImageIO CLI11::CLI11 glm::glm)
 
 # tests/golden/scenes.txt: "<name> <scene> [arguments...]"; with --frames N the last frame is the one compared.
+# The size every golden frame is rendered at (the references in tests/golden are this size), which hits.* compares
+# too (tests/hits.cmake: the golden test's frame and hits, and its reference renders of the same size).
+set(RT_GOLDEN_WIDTH 160)
+set(RT_GOLDEN_HEIGHT 120)
+
 file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/golden/scenes.txt golden_lines REGEX "^[^#]")
 set(RT_GOLDEN_CASES "")
 foreach(line IN LISTS golden_lines)
@@ -49,7 +54,8 @@ function(rt_add_golden_test)
   endif()
   add_test(NAME ${G_PREFIX}.${G_STAGE}.${G_NAME}
            COMMAND ${CMAKE_COMMAND} -DSTAGE=$<TARGET_FILE:${G_STAGE}> -DSTAGE_NAME=${G_STAGE} -DSCENE=${G_SCENE}
-                   -DNAME=${G_NAME} -DGOLDEN=${PROJECT_SOURCE_DIR}/tests/golden/${G_REFERENCE_STAGE}/${G_REFERENCE_NAME}.png
+                   -DNAME=${G_NAME} -DWIDTH=${RT_GOLDEN_WIDTH} -DHEIGHT=${RT_GOLDEN_HEIGHT}
+                   -DGOLDEN=${PROJECT_SOURCE_DIR}/tests/golden/${G_REFERENCE_STAGE}/${G_REFERENCE_NAME}.png
                    -DOWN_REFERENCE=${own_reference}
                    -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/${G_PREFIX}/${G_STAGE} -DCOMPARE=$<TARGET_FILE:image_compare>
                    "-DARGS=${args}" -DRENDERED_IN=${rendered_in} -DDUMP_HITS=${dump_hits}

@@ -68,7 +68,8 @@ function(rt_add_hits_tests stage)
     string(REPLACE ";" "|" args "${fields}")
     add_test(NAME hits.${stage}.${name}
              COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:${stage}> -DREFERENCE_EXE=$<TARGET_FILE:${reference}>
-                     -DSCENE=${scene} -DNAME=${name} "-DARGS=${args}" "-DBOUNDS=${bounds}" ${retrace}
+                     -DSCENE=${scene} -DNAME=${name} -DWIDTH=${RT_GOLDEN_WIDTH} -DHEIGHT=${RT_GOLDEN_HEIGHT}
+                     "-DARGS=${args}" "-DBOUNDS=${bounds}" ${retrace}
                      -DSAME_IMAGE=$<NOT:$<STREQUAL:${reference},01_naive>>
                      -DCOMPARE_HITS=$<TARGET_FILE:compare_hits> -DCOMPARE=$<TARGET_FILE:image_compare>
                      -DOUT_DIR=${CMAKE_BINARY_DIR}/test-output/hits/${stage}

@@ -1,6 +1,7 @@
 # One golden-image test: render with a stage at a small size into an EXR (so NaN/Inf can be detected), then compare
 # with tests/golden/<stage>/<name>.png. Invoked by CTest as:
-#   cmake -DSTAGE=<exe> -DSTAGE_NAME=01_naive -DSCENE=builtin:whitted -DNAME=whitted -DGOLDEN=<png> -DOUT_DIR=<dir>
+#   cmake -DSTAGE=<exe> -DSTAGE_NAME=01_naive -DSCENE=builtin:whitted -DNAME=whitted -DWIDTH=160 -DHEIGHT=120
+#         -DGOLDEN=<png> -DOUT_DIR=<dir>
 #         -DCOMPARE=<image_compare exe> -DOWN_REFERENCE=1 [-DARGS="--a|b"] -P run_golden.cmake
 # OWN_REFERENCE=0: GOLDEN belongs to another test (agree.*, far_like_whitted.*). With "--frames N" in ARGS the
 # stage writes N numbered images and the last one is compared. With -DRENDERED_IN=<dir> nothing is rendered: the
@@ -86,14 +87,14 @@ else()
     endif()
   endif()
   file(REMOVE ${render_dir}/${NAME}_heatmap.txt)
-  execute_process(COMMAND ${STAGE} --scene ${SCENE} --width 160 --height 120 --quiet --out ${image}
+  execute_process(COMMAND ${STAGE} --scene ${SCENE} --width ${WIDTH} --height ${HEIGHT} --quiet --out ${image}
                           --stats ${render_dir}/${NAME}.json ${heatmap} ${dump} ${ARGS}
                   RESULT_VARIABLE rc ERROR_VARIABLE err)
   # A stage that cannot draw this scene's heatmap says so (04 and 05 with cut-outs: the leaf pass would need more
   # storage blocks than GL guarantees) and renders nothing: the frame again without it, and the reason for the report.
   if(rc EQUAL 2 AND heatmap AND err MATCHES "--heatmap: not available")
     file(WRITE ${render_dir}/${NAME}_heatmap.txt "${err}")
-    execute_process(COMMAND ${STAGE} --scene ${SCENE} --width 160 --height 120 --quiet --out ${image}
+    execute_process(COMMAND ${STAGE} --scene ${SCENE} --width ${WIDTH} --height ${HEIGHT} --quiet --out ${image}
                             --stats ${render_dir}/${NAME}.json ${dump} ${ARGS}
                     RESULT_VARIABLE rc ERROR_VARIABLE err)
   endif()

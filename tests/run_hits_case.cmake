@@ -51,7 +51,7 @@ function(reference_key out)
   set(${out} ${key} PARENT_SCOPE)
 endfunction()
 
-set(size --width 160 --height 120)   # run_golden.cmake's
+set(size --width ${WIDTH} --height ${HEIGHT})   # the golden frame's (tests/golden.cmake: RT_GOLDEN_WIDTH/HEIGHT)
 set(stage_hits ${RENDERED_IN}/${NAME}${suffix}.hits)
 set(stage_image ${RENDERED_IN}/${NAME}${suffix}.exr)
 set(stage_stats ${RENDERED_IN}/${NAME}.json)
