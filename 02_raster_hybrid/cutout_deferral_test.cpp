@@ -27,7 +27,7 @@ TEST(CutoutDeferral, PixelsSeeingThroughAHoleGetStage01sHitBehindIt) {
         solid(scene, settings.intersect, false);
     std::size_t primaries = 0, holes = 0, same = 0;
     for (const HitRecord& r : frame.hits) {
-        if (r.path != 1 || (r.kind_light & 0xffu) != std::uint32_t(RayKind::Primary)) continue;
+        if (r.path != 1 || ray_kind(r.kind_light) != RayKind::Primary) continue;
         ++primaries;
         const int x = int(r.pixel) % width, y = int(r.pixel) / width;
         const Ray<float> ray = camera_ray<float>(scene.camera, width, height, float(x) + 0.5f, float(y) + 0.5f);

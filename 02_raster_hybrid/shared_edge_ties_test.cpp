@@ -72,7 +72,7 @@ TEST(HybridRenderer, PrimaryRaysThroughASharedEdgeTieToTheLowestIdAsStage01) {
     auto primary_triangles = [&](const FrameResult& r) {
         std::vector<int> ids(std::size_t(size * size), -2);
         for (const HitRecord& h : r.hits)
-            if ((h.kind_light & 0xffu) == std::uint32_t(RayKind::Primary)) ids[h.pixel] = h.triangle;
+            if (ray_kind(h.kind_light) == RayKind::Primary) ids[h.pixel] = h.triangle;
         return ids;
     };
     const std::vector<int> a = primary_triangles(stage02), b = primary_triangles(stage01);

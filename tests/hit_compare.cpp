@@ -17,15 +17,16 @@ constexpr std::size_t kExamplesPerCategory = 5;
 
 auto key(const HitRecord& r) { return std::make_tuple(r.sample, r.pixel, r.path, r.kind_light); }
 auto sample_of(const HitRecord& r) { return std::make_pair(r.sample, r.pixel); }
-std::uint32_t kind_of(const HitRecord& r) { return r.kind_light & 0xffu; }
+std::uint32_t kind_of(const HitRecord& r) { return std::uint32_t(ray_kind(r.kind_light)); }
 
 std::string describe(const HitRecord& r) {
     char text[160];
     const std::uint32_t kind = kind_of(r);
     std::snprintf(text, sizeof text, "sample %u pixel %u path %u %s%s", r.sample, r.pixel, r.path,
                   ray_kind_name(RayKind(kind)),
-                  kind == std::uint32_t(RayKind::Shadow) ? (" light " + std::to_string(r.kind_light >> 8)).c_str()
-                                                               : "");
+                  kind == std::uint32_t(RayKind::Shadow)
+                      ? (" light " + std::to_string(light_index(r.kind_light))).c_str()
+                      : "");
     return text;
 }
 

@@ -15,7 +15,7 @@ HitRecord ray(std::uint32_t pixel, std::uint32_t path, RayKind kind, std::int32_
     HitRecord r;
     r.pixel = pixel;
     r.path = path;
-    r.kind_light = std::uint32_t(kind) | (light << 8);
+    r.kind_light = pack_kind_light(kind, light);
     r.triangle = triangle;
     r.t = t;
     r.origin[0] = 0.5f * float(pixel);

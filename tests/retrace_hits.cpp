@@ -8,9 +8,9 @@
 // Retracing 02's own rays separates the two questions: given this exact ray, does the GPU find the hit brute force
 // finds? That holds on every driver, with only the division in t left to differ (README, "Exact hit checks").
 //
-// Shadow rays get the tmax the stages give them (whitted.h): the distance from their origin to their light, or
-// none for a directional light. The scene, its frame time and its effects come from the same options as the stage's
-// (--frames N: every frame retraces the same rays; the test reads the last).
+// Shadow rays get the tmax the stages give them (whitted.h, shadow_tmax): the distance from their origin to their
+// light, or none for a directional light. The scene, its frame time and its effects come from the same options as
+// the stage's (--frames N: every frame retraces the same rays; the test reads the last).
 #include <cmath>
 #include <limits>
 #include <string>
@@ -22,6 +22,7 @@
 #include "common/app/driver.h"
 #include "common/app/hit_file.h"
 #include "common/app/input_error.h"
+#include "common/trace/whitted.h"
 
 namespace rt {
 namespace {
@@ -42,8 +43,8 @@ public:
     std::string unsupported(const Scene& scene, const RenderSettings& settings) const override {
         if (!settings.record_hits) return "retrace_hits writes nothing without --dump-hits";
         for (const HitRecord& r : rays_)
-            if ((r.kind_light & 0xffu) == std::uint32_t(RayKind::Shadow) && (r.kind_light >> 8) >= scene.lights.size())
-                return "a shadow ray of " + rays_path_ + " names light " + std::to_string(r.kind_light >> 8) +
+            if (ray_kind(r.kind_light) == RayKind::Shadow && light_index(r.kind_light) >= scene.lights.size())
+                return "a shadow ray of " + rays_path_ + " names light " + std::to_string(light_index(r.kind_light)) +
                        "; the scene has " + std::to_string(scene.lights.size()) + " light(s)";
         return {};
     }
@@ -61,10 +62,9 @@ public:
             ray.origin = glm::vec3(r.origin[0], r.origin[1], r.origin[2]);
             ray.direction = glm::vec3(r.direction[0], r.direction[1], r.direction[2]);
             HitRecord out = r;
-            if ((r.kind_light & 0xffu) == std::uint32_t(RayKind::Shadow)) {
-                const Light& light = scene.lights[r.kind_light >> 8];
-                ray.tmax = light.type == LightType::Directional ? std::numeric_limits<float>::infinity()
-                                                                : glm::length(light.position - ray.origin);
+            if (ray_kind(r.kind_light) == RayKind::Shadow) {
+                const Light& light = scene.lights[light_index(r.kind_light)];
+                ray.tmax = shadow_tmax(light, ray.origin);
                 out.triangle = shadow_tracer.occluded(ray, counters) ? 1 : -1;
                 out.t = 0.0f;
             } else {

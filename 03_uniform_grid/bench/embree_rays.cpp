@@ -74,7 +74,7 @@ RTCRay make_ray(const rt::HitRecord& r, float tfar) {
 
 // A shadow record's tmax, as whitted.h sets it.
 float shadow_tmax(const rt::HitRecord& r, const rt::Scene& scene) {
-    const std::uint32_t light = r.kind_light >> 8;
+    const std::uint32_t light = rt::light_index(r.kind_light);
     if (light >= scene.lights.size()) throw std::runtime_error("a shadow record names light " + std::to_string(light));
     const rt::Light& l = scene.lights[light];
     if (l.type == rt::LightType::Directional) return std::numeric_limits<float>::infinity();
@@ -95,7 +95,7 @@ void trace_all(RTCScene scene, const std::vector<rt::HitRecord>& records, const 
             const std::size_t end = std::min(records.size(), begin + kChunk);
             for (std::size_t i = begin; i < end; ++i) {
                 const rt::HitRecord& r = records[i];
-                if (rt::RayKind(r.kind_light & 0xff) == rt::RayKind::Shadow) {
+                if (rt::ray_kind(r.kind_light) == rt::RayKind::Shadow) {
                     RTCRay ray = make_ray(r, tfar[i]);
                     rtcOccluded1(scene, &context, &ray);
                     result[i] = ray.tfar < 0.0f ? 1 : -1;  // Embree marks an occluded ray with tfar = -inf
@@ -151,10 +151,10 @@ int main(int argc, char** argv) {
         records = rt::read_hit_file(hits_path);
         if (skip_primary)
             std::erase_if(records, [](const rt::HitRecord& r) {
-                return rt::RayKind(r.kind_light & 0xff) == rt::RayKind::Primary;
+                return rt::ray_kind(r.kind_light) == rt::RayKind::Primary;
             });
         for (const rt::HitRecord& r : records)
-            tfar.push_back(rt::RayKind(r.kind_light & 0xff) == rt::RayKind::Shadow
+            tfar.push_back(rt::ray_kind(r.kind_light) == rt::RayKind::Shadow
                                ? shadow_tmax(r, scene)
                                : std::numeric_limits<float>::infinity());
     } catch (const std::exception& e) {
@@ -182,7 +182,7 @@ int main(int argc, char** argv) {
     // surfaces: the stages take the lowest triangle id, Embree any of them. Counted apart, as "ties".
     std::size_t closest = 0, closest_same = 0, closest_ties = 0, shadow = 0, shadow_same = 0;
     for (std::size_t i = 0; i < records.size(); ++i) {
-        const bool is_shadow = rt::RayKind(records[i].kind_light & 0xff) == rt::RayKind::Shadow;
+        const bool is_shadow = rt::ray_kind(records[i].kind_light) == rt::RayKind::Shadow;
         (is_shadow ? shadow : closest)++;
         if (result[i] == records[i].triangle) (is_shadow ? shadow_same : closest_same)++;
         else if (!is_shadow && result[i] >= 0 && records[i].triangle >= 0 &&

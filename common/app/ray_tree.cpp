@@ -28,7 +28,7 @@ std::string count_of(std::uint64_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-RayKind kind_of(const HitRecord& r) { return RayKind(r.kind_light & 0xffu); }
+RayKind kind_of(const HitRecord& r) { return ray_kind(r.kind_light); }
 
 }  // namespace
 
@@ -71,7 +71,7 @@ std::vector<RayTreeLine> ray_tree(const std::vector<HitRecord>& hits, const std:
         const bool a_shadow = kind_of(a.ray) == RayKind::Shadow;
         const bool b_shadow = kind_of(b.ray) == RayKind::Shadow;
         if (a_shadow != b_shadow) return !a_shadow;   // the ray first, then the shadow rays of its hit
-        return (a.ray.kind_light >> 8) < (b.ray.kind_light >> 8);
+        return light_index(a.ray.kind_light) < light_index(b.ray.kind_light);
     });
     return lines;
 }
@@ -96,7 +96,7 @@ std::string format_ray_tree(const std::vector<RayTreeLine>& lines, int x, int y,
         const HitRecord& r = l.ray;
         const RayKind kind = kind_of(r);
         std::string name = ray_kind_name(kind);
-        name += kind == RayKind::Shadow ? " to light " + std::to_string(r.kind_light >> 8)
+        name += kind == RayKind::Shadow ? " to light " + std::to_string(light_index(r.kind_light))
                                               : " path " + std::to_string(r.path);
         std::string hit;
         if (r.triangle == -2)

@@ -28,6 +28,13 @@ struct HitRecord {
 };
 static_assert(sizeof(HitRecord) == 48);
 
+// kind_light's two fields: the ray's kind, and a shadow ray's light.
+constexpr std::uint32_t pack_kind_light(RayKind kind, std::uint32_t light) {
+    return std::uint32_t(kind) | (light << 8);
+}
+constexpr RayKind ray_kind(std::uint32_t kind_light) { return RayKind(kind_light & 0xffu); }
+constexpr std::uint32_t light_index(std::uint32_t kind_light) { return kind_light >> 8; }
+
 // What one ray of the pixel under --pixel X,Y cost (the ray tree printout, driver.cpp): its ray/triangle tests and
 // its traversal's own steps where it has them (03: grid cells walked; 04-05: the ray's leaf pairs, its level-0 node
 // tests). Named like its HitRecord by (sample, path, kind_light); a stage may report one ray in several parts

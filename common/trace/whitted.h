@@ -49,13 +49,13 @@ struct HitLog {
     template <class T>
     void add(std::uint32_t path, RayKind kind, std::uint32_t light, const Ray<T>& ray, std::int32_t triangle,
              float t, std::uint64_t tests) const {
-        if (work) work->push_back(RayWork{sample, path, std::uint32_t(kind) | (light << 8), tests, 0});
+        if (work) work->push_back(RayWork{sample, path, pack_kind_light(kind, light), tests, 0});
         if (!records) return;
         HitRecord r;
         r.sample = sample;
         r.pixel = pixel;
         r.path = path;
-        r.kind_light = std::uint32_t(kind) | (light << 8);
+        r.kind_light = pack_kind_light(kind, light);
         r.triangle = triangle;
         r.t = t;
         for (int i = 0; i < 3; ++i) {
@@ -102,6 +102,15 @@ SurfacePoint<T> surface_point(const Scene& scene, const Ray<T>& ray, const Hit<T
     s.uv = wf * scene.uvs[i] + uf * scene.uvs[i + 1] + vf * scene.uvs[i + 2];
     s.material = scene.material_ids[std::size_t(hit.triangle)];
     return s;
+}
+
+// A shadow ray's tmax: the distance from its origin to its light, infinite for a directional light. Every stage's
+// shadow rays get it (the GPU stages' twin: common/shaders/wavefront/shade.comp), and tests/retrace_hits traces a
+// dump's shadow rays again with it.
+template <class T>
+T shadow_tmax(const Light& light, const Vec3<T>& origin) {
+    return light.type == LightType::Directional ? std::numeric_limits<T>::infinity()
+                                                : glm::length(Vec3<T>(light.position) - origin);
 }
 
 template <class T, class Tracer>
@@ -202,9 +211,7 @@ private:
                 Ray<T> shadow;
                 shadow.direction = Vec3<T>(to_light);
                 shadow.origin = spawn_origin(sp, shadow.direction);
-                shadow.tmax = light.type == LightType::Directional
-                                  ? std::numeric_limits<T>::infinity()
-                                  : glm::length(Vec3<T>(light.position) - shadow.origin);
+                shadow.tmax = shadow_tmax(light, shadow.origin);
                 counters.rays[int(RayKind::Shadow)]++;
                 const std::uint64_t shadow_tests_before = counters.intersection_tests;
                 const bool occluded = shadow_tracer_.occluded(shadow, counters);

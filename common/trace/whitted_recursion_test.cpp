@@ -50,7 +50,7 @@ struct Traced {
     std::vector<HitRecord> records;
     const HitRecord* path(std::uint32_t p) const {
         for (const HitRecord& r : records)
-            if (r.path == p && (r.kind_light & 0xffu) != std::uint32_t(RayKind::Shadow)) return &r;
+            if (r.path == p && ray_kind(r.kind_light) != RayKind::Shadow) return &r;
         return nullptr;
     }
 };

@@ -131,7 +131,7 @@ TEST(OrderedQueues, PrimaryHitsInTileMortonOrderSpawnedRaysGroupedByKind) {
     ASSERT_GE(r.hits.size(), expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i) {
         EXPECT_EQ(r.hits[i].pixel, expected[i]) << "primary " << i;
-        EXPECT_EQ(r.hits[i].kind_light & 0xff, std::uint32_t(RayKind::Primary));
+        EXPECT_EQ(ray_kind(r.hits[i].kind_light), RayKind::Primary);
     }
     // After the primaries: runs of one kind (and light); within a run of reflections or refractions of one depth,
     // parents (path / 2) keep the primary order, so pixels of depth-1 rays follow the primary order.
@@ -159,11 +159,11 @@ TEST(HitRecords, EveryRayHasTheParentHitItsPathNames) {
     const FrameResult r = render_hybrid(scene, test_frame_settings(scene, 64, 48, true), kBruteForce);
     std::set<std::pair<std::uint32_t, std::uint32_t>> hits;   // (pixel, path) of closest hits
     for (const HitRecord& h : r.hits)
-        if (RayKind(h.kind_light & 0xff) != RayKind::Shadow && h.triangle >= 0)
+        if (ray_kind(h.kind_light) != RayKind::Shadow && h.triangle >= 0)
             hits.insert({h.pixel, h.path});
     std::size_t checked = 0;
     for (const HitRecord& h : r.hits) {
-        const auto kind = RayKind(h.kind_light & 0xff);
+        const auto kind = ray_kind(h.kind_light);
         if (kind == RayKind::Primary) {
             EXPECT_EQ(h.path, 1u);
             continue;
@@ -171,7 +171,7 @@ TEST(HitRecords, EveryRayHasTheParentHitItsPathNames) {
         const bool shadow = kind == RayKind::Shadow;
         const std::uint32_t parent = shadow ? h.path : h.path / 2;
         if (shadow) {
-            EXPECT_LT(h.kind_light >> 8, scene.lights.size());
+            EXPECT_LT(light_index(h.kind_light), scene.lights.size());
         } else {
             EXPECT_EQ(h.path % 2, kind == RayKind::Refraction ? 1u : 0u);
         }
@@ -344,7 +344,7 @@ TEST(StorageLimit, TracedPrimaryRaysUnderATinyLimitGiveTheSameFrame) {
     expect_same_frame(unlimited, tiny, false);
     std::size_t primaries = 0;
     for (const HitRecord& h : unlimited.hits)
-        primaries += (h.kind_light & 0xff) == std::uint32_t(RayKind::Primary);
+        primaries += ray_kind(h.kind_light) == RayKind::Primary;
     EXPECT_EQ(primaries, 64u * 48u);
 }
 
