@@ -1,5 +1,5 @@
 """scripts/golden_cases.py - tests/golden/scenes.txt as the scripts read it, the way tests/golden.cmake and
-tests/run_golden.cmake do (scripts/grade, scripts/grade_report.py, scripts/gpu-check).
+tests/run_golden.cmake (and tests/last_frame.cmake) do (scripts/grade, scripts/grade_report.py, scripts/gpu-check).
 """
 import os
 import re

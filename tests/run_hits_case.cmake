@@ -7,19 +7,8 @@
 string(REPLACE "|" ";" ARGS "${ARGS}")
 string(REPLACE "|" ";" BOUNDS "${BOUNDS}")
 file(MAKE_DIRECTORY ${OUT_DIR})
-set(suffix "")
-list(FIND ARGS --frames frames_at)
-if(frames_at GREATER_EQUAL 0)
-  math(EXPR frames_at "${frames_at} + 1")
-  list(GET ARGS ${frames_at} frames)
-  math(EXPR last "${frames} - 1")
-  string(LENGTH "${last}" digits)
-  while(digits LESS 4)   # frame_path's %04d
-    string(PREPEND last "0")
-    math(EXPR digits "${digits} + 1")
-  endwhile()
-  set(suffix _${last})
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/last_frame.cmake)
+last_frame_suffix("${ARGS}" suffix)   # with --frames N, the last frame's files are compared
 
 # The reference's render is kept (REFERENCE_CACHE) under a key of everything it is made from: the reference
 # executable, the shaders it may read (REFERENCE_SHADERS: the shader folders of common/ and of the stages up to it),
