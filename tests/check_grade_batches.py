@@ -8,7 +8,9 @@ binary (not one per case, as CTest does); that must give every case the verdict 
     its assertion (what the report shows), the skip is not a pass;
   - the same stand-in crashing (SIGSEGV) or writing no report: none of its cases passes; they go back to CTest one
     by one: a real case of unit_tests_common_scene put in the stand-in's batch passes there, the stand-in's own cases
-    (which CTest does not know) "did not run".
+    (which CTest does not know) "did not run";
+  - a ^C while CTest runs the other tests (the binaries run beside it): it reaches the caller, and the stand-in,
+    started and still running, is stopped (no test process outlives the grading).
 
 usage: check_grade_batches.py --build-dir DIR
 """
@@ -16,16 +18,23 @@ import argparse
 import importlib.machinery
 import importlib.util
 import os
+import signal
 import stat
 import sys
 import tempfile
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 FAKE_GTEST = r'''#!/usr/bin/env python3
-import os, signal, sys
+import os, signal, sys, time
 args = dict(a.split("=", 1) for a in sys.argv[1:] if "=" in a)
 cases = args["--gtest_filter"].split(":")
+if os.environ.get("FAKE_MODE") == "hang":   # says it runs (its pid), then runs on
+    pid_file = os.environ["FAKE_PID_FILE"]
+    open(pid_file + ".tmp", "w").write(str(os.getpid()))
+    os.rename(pid_file + ".tmp", pid_file)
+    time.sleep(600)
 if os.environ.get("FAKE_MODE") == "crash":
     os.kill(os.getpid(), signal.SIGSEGV)
 if os.environ.get("FAKE_MODE") == "no-report":
@@ -107,12 +116,43 @@ def main():
             problems.append(f"{mode}: {passed or 'not every case'} passed or has no verdict: {results}")
         if not results.get(real, (False,))[0]:
             problems.append(f"{mode}: {real}, batched with the stand-in, was not run again by CTest: {results[real]}")
+
+    # ^C while CTest's part runs: the stand-in (started beside it, hanging) must not outlive the grading.
+    os.environ["FAKE_MODE"] = "hang"
+    pid_file = os.environ["FAKE_PID_FILE"] = os.path.join(work, "fake.pid")
+    ctest_run = grade.ctest_run
+
+    def interrupted(*args, **kwargs):
+        for _ in range(200):   # until the stand-in runs (at most 20 s)
+            if os.path.exists(pid_file):
+                break
+            time.sleep(0.1)
+        raise KeyboardInterrupt
+
+    grade.ctest_run = interrupted
+    try:
+        grade.run_ctest(build, list(fake_listing), junit, listing=fake_listing)
+        problems.append("^C during CTest's part: run_ctest returned instead of passing it on")
+    except KeyboardInterrupt:
+        pass
+    finally:
+        grade.ctest_run = ctest_run
+    if not os.path.exists(pid_file):
+        problems.append("^C during CTest's part: the stand-in never started")
+    else:
+        pid = int(open(pid_file).read())
+        try:
+            os.kill(pid, 0)
+            problems.append(f"^C during CTest's part: the stand-in (pid {pid}) is still running")
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
     del os.environ["FAKE_MODE"]
 
     for problem in problems:
         print("FAIL " + problem)
     print(f"grade batches: {len(scene)} cases of unit_tests_common_scene batched like CTest; a fake binary's pass, "
-          f"failure, skip, crash and missing report: {len(problems)} problems")
+          f"failure, skip, crash, missing report and a ^C beside it: {len(problems)} problems")
     return 1 if problems else 0
 
 
