@@ -30,6 +30,7 @@
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/gltf/gltf_io.h"
 #include "common/scene/scene.h"
+#include "common/trace/whitted.h"
 
 namespace {
 
@@ -72,14 +73,11 @@ RTCRay make_ray(const rt::HitRecord& r, float tfar) {
     return ray;
 }
 
-// A shadow record's tmax, as whitted.h sets it.
+// A shadow record's tmax, as the stages set it (whitted.h: rt::shadow_tmax).
 float shadow_tmax(const rt::HitRecord& r, const rt::Scene& scene) {
     const std::uint32_t light = rt::light_index(r.kind_light);
     if (light >= scene.lights.size()) throw std::runtime_error("a shadow record names light " + std::to_string(light));
-    const rt::Light& l = scene.lights[light];
-    if (l.type == rt::LightType::Directional) return std::numeric_limits<float>::infinity();
-    const glm::vec3 origin(r.origin[0], r.origin[1], r.origin[2]);
-    return glm::length(l.position - origin);
+    return rt::shadow_tmax(scene.lights[light], glm::vec3(r.origin[0], r.origin[1], r.origin[2]));
 }
 
 // Traces records [0, n) on `threads` threads (chunks taken from a shared counter); result[i] is the triangle id

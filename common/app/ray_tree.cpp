@@ -97,7 +97,7 @@ std::string format_ray_tree(const std::vector<RayTreeLine>& lines, int x, int y,
         const RayKind kind = kind_of(r);
         std::string name = ray_kind_name(kind);
         name += kind == RayKind::Shadow ? " to light " + std::to_string(light_index(r.kind_light))
-                                              : " path " + std::to_string(r.path);
+                                        : " path " + std::to_string(r.path);
         std::string hit;
         if (r.triangle == -2)
             hit = "(no such ray in the stage's records)";
