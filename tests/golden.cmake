@@ -6,12 +6,12 @@ set_target_properties(image_compare PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_
 target_include_directories(image_compare PRIVATE ${PROJECT_SOURCE_DIR})
 target_link_libraries(image_compare PRIVATE OpenImageIO::OpenImageIO CLI11::CLI11 glm::glm)
 
-# tests/golden/scenes.txt: "<name> <scene> [arguments...]"; with --frames N the last frame is the one compared.
 # The size every golden frame is rendered at (the references in tests/golden are this size), which hits.* compares
 # too (tests/hits.cmake: the golden test's frame and hits, and its reference renders of the same size).
 set(RT_GOLDEN_WIDTH 160)
 set(RT_GOLDEN_HEIGHT 120)
 
+# tests/golden/scenes.txt: "<name> <scene> [arguments...]"; with --frames N the last frame is the one compared.
 file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/golden/scenes.txt golden_lines REGEX "^[^#]")
 set(RT_GOLDEN_CASES "")
 foreach(line IN LISTS golden_lines)
