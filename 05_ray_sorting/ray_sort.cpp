@@ -1,7 +1,9 @@
 #include "ray_sort.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "common/gpu/gl/bindings.h"
 
@@ -28,7 +30,25 @@ gpu::Program pass(const char* name) { return gpu::Program::compute(std::string(k
 
 RaySorter::RaySorter()
     : keys_pass_(pass("ray_keys.comp")), heads_pass_(pass("chunk_heads.comp")), chunks_pass_(pass("chunks.comp")),
-      sizes_pass_(pass("chunk_sizes.comp")), skeleton_pass_(pass("skeleton.comp")) {}
+      tally_pass_(pass("chunk_tally.comp")), sizes_pass_(pass("chunk_sizes.comp")), skeleton_pass_(pass("skeleton.comp")),
+      total_(sizeof(std::uint32_t)), tally_(kTallySlots * sizeof(std::uint64_t)) {
+    reset_tally();
+}
+
+std::size_t RaySorter::chunk_count() {
+    ++syncs;
+    return total_.download_value<std::uint32_t>();
+}
+
+std::array<std::uint64_t, RaySorter::kTallySlots> RaySorter::chunk_tally() {
+    ++syncs;
+    const std::vector<std::uint32_t> words = tally_.download<std::uint32_t>(2 * kTallySlots);
+    std::array<std::uint64_t, kTallySlots> sums{};
+    for (std::size_t s = 0; s < kTallySlots; ++s) sums[s] = words[2 * s] | std::uint64_t(words[2 * s + 1]) << 32;
+    return sums;
+}
+
+void RaySorter::reset_tally() { tally_.clear_u32(0); }
 
 void RaySorter::sort(const gpu::Buffer& rays, std::size_t first, std::size_t count, gpu::Buffer& order) {
     compute_keys(rays, first, count);
@@ -63,13 +83,15 @@ void RaySorter::compute_keys(const gpu::Buffer& rays, std::size_t first, std::si
 void RaySorter::sort_keys(const gpu::Buffer& keys, std::size_t n, unsigned sort_bits, std::uint32_t first,
                           gpu::Buffer& order) {
     gpu::check_storage_block("RaySorter keys", n);
+    if (tally_slot >= kTallySlots) throw std::out_of_range("RaySorter: tally slot " + std::to_string(tally_slot));
     const std::size_t bytes = std::max<std::size_t>(n, 1) * 4;
     order.reserve(bytes);
-    chunk_count_ = 0;
-    if (n == 0) return;
+    if (n == 0) {
+        total_.clear_u32(0);
+        return;
+    }
     for (gpu::Buffer* b : {&heads_, &chunk_of_, &chunk_keys_, &chunk_ids_, &chunk_bases_, &chunk_ends_, &sizes_})
         b->reserve(bytes);
-    total_.reserve(4);
 
     // Compression: head flags, their exclusive scan (the chunk numbers and, as the total, the chunk count), chunks.
     heads_pass_.set("rs_count", unsigned(n));
@@ -84,32 +106,37 @@ void RaySorter::sort_keys(const gpu::Buffer& keys, std::size_t n, unsigned sort_
     for (unsigned slot = 0; slot < 7; ++slot) bind_uints(*chunk_inputs[slot], slot, n);
     chunks_pass_.dispatch_threads(n);
     barrier();
-    chunk_count_ = total_.download_value<std::uint32_t>();
-
-    // Sorting: the chunks by key, their ids along.
-    radix_.sort(chunk_keys_, chunk_ids_, chunk_count_, sort_bits);
-
-    // Decompression: sizes in sorted order, where each chunk starts, the skeleton, the segmented scan.
-    const std::size_t c = chunk_count_;
-    sizes_pass_.set("rs_chunk_count", unsigned(c));
-    bind_uints(chunk_ids_, 0, c);
-    bind_uints(chunk_bases_, 1, c);
-    bind_uints(chunk_ends_, 2, c);
-    bind_uints(sizes_, 3, c);
-    sizes_pass_.dispatch_threads(c);
+    bind_uints(total_, 0, 1);
+    tally_.bind_range(kBinding[1], 0, kTallySlots * sizeof(std::uint64_t));
+    tally_pass_.set("rs_slot", unsigned(tally_slot));
+    tally_pass_.dispatch(1);
     barrier();
-    scan_.exclusive(sizes_, sizes_, c);   // in place: sizes_ now holds the starts
+
+    // Sorting: the chunks by key, their ids along. Only the GPU knows how many chunks there are (total_); the
+    // passes from here on are sized for n, a bound of it, and read the count there.
+    radix_.sort(chunk_keys_, chunk_ids_, n, total_, sort_bits);
+
+    // Decompression: sizes in sorted order, where each chunk starts, the skeleton, the segmented scan. Sizes past
+    // the chunk count are not written, and the exclusive scan's first chunk-count entries do not read them.
+    bind_uints(chunk_ids_, 0, n);
+    bind_uints(chunk_bases_, 1, n);
+    bind_uints(chunk_ends_, 2, n);
+    bind_uints(sizes_, 3, n);
+    bind_uints(total_, 5, 1);
+    sizes_pass_.dispatch_threads(n);
+    barrier();
+    scan_.exclusive(sizes_, sizes_, n);   // in place: sizes_ now holds the starts
     order.clear_u32(1);                   // the skeleton is built in `order`, scanned in place
     heads_.clear_u32(0);
     barrier();
-    skeleton_pass_.set("rs_chunk_count", unsigned(c));
     skeleton_pass_.set("rs_first", unsigned(first));
-    bind_uints(chunk_ids_, 0, c);
-    bind_uints(chunk_bases_, 1, c);
-    bind_uints(sizes_, 2, c);
+    bind_uints(chunk_ids_, 0, n);
+    bind_uints(chunk_bases_, 1, n);
+    bind_uints(sizes_, 2, n);
     bind_uints(order, 3, n);
     bind_uints(heads_, 4, n);
-    skeleton_pass_.dispatch_threads(c);
+    bind_uints(total_, 5, 1);
+    skeleton_pass_.dispatch_threads(n);
     barrier();
     scan_.segmented_inclusive(order, heads_, order, n);
     gpu::check_gl("RaySorter: sort_keys");

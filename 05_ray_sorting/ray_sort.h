@@ -6,6 +6,7 @@
 //   compression    chunk_heads.comp   head[i] = 1 where the key changes
 //                  Scan::exclusive    chunk number of each head
 //                  chunks.comp        chunk arrays: key, id, base (first ray), end
+//                  chunk_tally.comp   the chunk count added to the frame's sums (statistics)
 //   sorting        RadixSort          the chunks by key (stable; ids ride along), over the key's used bits only
 //   decompression  chunk_sizes.comp   size of each sorted chunk; Scan::exclusive: where it starts in the output
 //                  skeleton.comp      a skeleton of 1s gets each chunk's base at its start, with a head flag
@@ -13,10 +14,15 @@
 //
 // The result is a permutation buffer: order[i] = the queue index (first + k) of the i-th ray in sorted order. Equal
 // keys keep their queue order, so the order equals a stable sort of the rays by key (ray_keys.h: sorted_order), and
-// each group (ray kind, light) keeps the range it has in the queue. The one read-back is the chunk count (the sort's
-// length). Every buffer holds one uint per ray or chunk, so a batch whose rays fit a storage block fits too.
+// each group (ray kind, light) keeps the range it has in the queue. Every buffer holds one uint per ray or chunk, so a
+// batch whose rays fit a storage block fits too.
+//
+// Nothing is read back to the CPU: the chunk count (the sort's length) stays on the GPU, where the radix sort and
+// the decompression read it; the passes are sized for n, its bound (the first read-back-free version; until
+// 2026-12-05 each sort read the count back, a wait for the GPU in every batch).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -46,15 +52,24 @@ public:
                    gpu::Buffer& order);
 
     const gpu::Buffer& keys() const { return keys_; }
-    // Chunks of the last sort_keys (rays / chunks is the compression ratio).
-    std::size_t chunk_count() const { return chunk_count_; }
+    // Chunks of the last sort_keys (rays / chunks is the compression ratio), read back: one sync, for tests and tools.
+    std::size_t chunk_count();
+
+    // The chunk counts of every sort_keys are summed on the GPU in the tally slot set here (the renderer uses one
+    // per batch kind); chunk_tally() reads the sums back (one sync), reset_tally() clears them.
+    static constexpr std::size_t kTallySlots = 3;
+    std::size_t tally_slot = 0;
+    std::array<std::uint64_t, kTallySlots> chunk_tally();
+    void reset_tally();
+
+    // Read-backs (each a wait for the GPU) since construction: chunk_count() and chunk_tally() only.
+    std::uint64_t syncs = 0;
 
 private:
-    gpu::Program keys_pass_, heads_pass_, chunks_pass_, sizes_pass_, skeleton_pass_;
+    gpu::Program keys_pass_, heads_pass_, chunks_pass_, tally_pass_, sizes_pass_, skeleton_pass_;
     gpu::Scan scan_;
     gpu::RadixSort radix_;
-    gpu::Buffer keys_, heads_, chunk_of_, chunk_keys_, chunk_ids_, chunk_bases_, chunk_ends_, sizes_, total_;
-    std::size_t chunk_count_ = 0;
+    gpu::Buffer keys_, heads_, chunk_of_, chunk_keys_, chunk_ids_, chunk_bases_, chunk_ends_, sizes_, total_, tally_;
 };
 
 }  // namespace rt

@@ -2,6 +2,7 @@
 // of compression + radix sort + decompression.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <algorithm>
 #include <limits>
 #include <numeric>
@@ -189,6 +190,37 @@ TEST(RaySorter, RaysSortLikeTheCpuAndEachGroupKeepsItsQueueRange) {
         ASSERT_EQ(ray_group(rays[got[i]], sorter.layout), ray_group(rays[1000 + i], sorter.layout)) << "slot " << i;
     EXPECT_EQ(sorter.chunk_count(), compress(keys).keys.size());
     EXPECT_LE(sorter.chunk_count(), std::size_t(6001));
+}
+
+// A sort reads nothing back (the chunk count stays on the GPU: the radix sort and the decompression read it there),
+// and the chunk counts add up on the GPU in the tally slot of each sort, read once. Stale sizes and chunks past the
+// count, left by a longer sort before, change nothing.
+TEST(RaySorter, SortsReadNothingBackAndTallyTheirChunksOnTheGpu) {
+    gpu::test_context();
+    RaySorter sorter;
+    std::mt19937 rng(3);
+    std::array<std::uint64_t, RaySorter::kTallySlots> expected{};
+    for (std::size_t n : {std::size_t(100003), std::size_t(5000), std::size_t(257), std::size_t(0), std::size_t(1)}) {
+        std::vector<std::uint32_t> keys(n);
+        for (auto& k : keys) k = std::uint32_t(rng() % 300);
+        const Buffer buffer = Buffer::from(keys);
+        Buffer order;
+        sorter.tally_slot = n % RaySorter::kTallySlots;
+        sorter.sort_keys(buffer, n, 32, 5, order);
+        EXPECT_EQ(sorter.syncs, 0u) << "n = " << n << ": a sort read something back";
+        if (n > 0) {
+            EXPECT_EQ(order.download<std::uint32_t>(n), sorted_order(keys, 5)) << "n = " << n;
+        }
+        expected[n % RaySorter::kTallySlots] += compress(keys).keys.size();
+    }
+    EXPECT_EQ(sorter.chunk_tally(), expected);
+    EXPECT_EQ(sorter.syncs, 1u);
+    sorter.reset_tally();
+    EXPECT_EQ(sorter.chunk_tally(), (std::array<std::uint64_t, RaySorter::kTallySlots>{}));
+    sorter.tally_slot = RaySorter::kTallySlots;
+    const Buffer one = Buffer::from(std::vector<std::uint32_t>{1});
+    Buffer order;
+    EXPECT_THROW(sorter.sort_keys(one, 1, 32, 0, order), std::out_of_range);
 }
 
 }  // namespace

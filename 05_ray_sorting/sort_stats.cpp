@@ -39,6 +39,7 @@ void to_json(nlohmann::json& out, const SortFrameStats& f) {
                                   {"sort_ms", f.sort_ms[k]}};
     }
     out["batches"] = batches;
+    out["gpu_cpu_syncs"] = f.gpu_cpu_syncs;
 }
 
 }  // namespace rt

@@ -25,6 +25,9 @@ struct SortFrameStats {
     std::array<SortBatchStats, 2> batches{};
     std::array<GpuOrderChoice::Tally, 2> kept{};                   // batches whose sorted order was kept
     std::array<double, 2> sort_ms{};
+    // Read-backs of the sorting in the frame (each a wait for the GPU): none inside a batch, only its statistics'.
+    // The frame's total is this plus ray_hierarchy's gpu_cpu_syncs.
+    std::uint64_t gpu_cpu_syncs = 0;
 };
 
 void to_json(nlohmann::json& out, const SortFrameStats& stats);

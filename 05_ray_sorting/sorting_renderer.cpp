@@ -56,6 +56,8 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
     if (!sort_options.sorts()) return;
     compile();
     choice_.reset_tally();
+    sorter_->reset_tally();
+    frame_first_sync_ = sorter_->syncs;
     const float diagonal = glm::length(scene.bounds.hi - scene.bounds.lo);
     diagonal_ = std::isfinite(diagonal) && diagonal > 0.0f ? diagonal : 1.0f;
     const unsigned lights = unsigned(scene.lights.size());
@@ -78,13 +80,14 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     {
         auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
         sorter_->layout = layouts_[shadow ? 1 : 0];   // ray_keys.h: which order suits which rays
+        sorter_->tally_slot = shadow ? 1 : 0;          // the chunk counts per batch kind, summed on the GPU
         sorter_->sort(in.rays, in.first, n, order_);
-        stats.chunks += sorter_->chunk_count();
         if (sort_options.mode == SortMode::automatic) {
             // Reflection and refraction rays: a second order by the finer direction cell, for the choice.
             const bool fine = !shadow && fine_direction_bits() > 0;
             if (fine) {
                 sorter_->layout = layouts_[2];
+                sorter_->tally_slot = 2;   // not reported: a batch's chunks are those of its first key
                 sorter_->sort(in.rays, in.first, n, fine_order_);
             }
             choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, fine ? &fine_order_ : nullptr,
@@ -119,8 +122,8 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
 std::vector<std::string> RaySortingRenderer::stage_programs() const {
     std::vector<std::string> programs = RayHierarchyRenderer::stage_programs();
     if (sort_options.sorts())
-        for (const char* p : {"ray_keys.comp", "chunk_heads.comp", "chunks.comp", "chunk_sizes.comp", "skeleton.comp",
-                              "ray_gather.comp", "result_scatter.comp"})
+        for (const char* p : {"ray_keys.comp", "chunk_heads.comp", "chunks.comp", "chunk_tally.comp", "chunk_sizes.comp",
+                              "skeleton.comp", "ray_gather.comp", "result_scatter.comp"})
             programs.push_back(std::string("05_ray_sorting/shaders/") + p);
     if (sort_options.mode == SortMode::automatic)
         for (const char* p : {"order_cost.comp", "order_choice.comp"})
@@ -136,9 +139,18 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     f.fine_direction_bits = fine_direction_bits();
     f.layouts = layouts_;
     f.batches = batch_stats_;
+    // The chunk counts, summed on the GPU (ray_sort.h), read here once per frame.
+    if (sorter_ && sort_options.sorts()) {
+        const auto chunks = sorter_->chunk_tally();
+        for (std::size_t k = 0; k < 2; ++k) f.batches[k].chunks = chunks[k];
+        f.gpu_cpu_syncs = sorter_->syncs - frame_first_sync_;
+    }
     // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
-    // them with --sort on (one key); with auto the GPU's choice, read here once per frame.
-    if (sort_options.mode == SortMode::automatic) f.kept = choice_.tally();
+    // them with --sort on (one key); with auto the GPU's choice, read here once per frame (one more sync).
+    if (sort_options.mode == SortMode::automatic) {
+        f.kept = choice_.tally();
+        ++f.gpu_cpu_syncs;
+    }
     if (sort_options.mode == SortMode::on)
         for (std::size_t k = 0; k < 2; ++k) f.kept[k] = {batch_stats_[k].batches, batch_stats_[k].rays};
     for (std::size_t k = 0; k < 2; ++k) f.sort_ms[k] = pass_ms(result, kSortPhase[k]);

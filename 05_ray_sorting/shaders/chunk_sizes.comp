@@ -9,7 +9,8 @@ layout(std430, binding = RS_BINDING_1) readonly buffer ChunkBases { uint rs_chun
 layout(std430, binding = RS_BINDING_2) readonly buffer ChunkEnds { uint rs_chunk_ends[]; };
 layout(std430, binding = RS_BINDING_3) writeonly buffer Sizes { uint rs_sizes[]; };
 
-uniform uint rs_chunk_count;
+// The chunk count: the total of the compression's scan, on the GPU only (ray_sort.h: nothing is read back).
+layout(std430, binding = RS_BINDING_5) readonly buffer ChunkCount { uint rs_chunk_count; };
 
 void main() {
     const uint j = rt_global_index();

@@ -12,7 +12,8 @@ layout(std430, binding = RS_BINDING_2) readonly buffer Starts { uint rs_starts[]
 layout(std430, binding = RS_BINDING_3) buffer Skeleton { uint rs_skeleton[]; };
 layout(std430, binding = RS_BINDING_4) buffer Heads { uint rs_heads[]; };
 
-uniform uint rs_chunk_count;
+// The chunk count: the total of the compression's scan, on the GPU only (ray_sort.h: nothing is read back).
+layout(std430, binding = RS_BINDING_5) readonly buffer ChunkCount { uint rs_chunk_count; };
 uniform uint rs_first;   // added to every index: the queue position of key 0
 
 void main() {

@@ -42,6 +42,7 @@ constexpr unsigned kBindingSortKeysIn = kBindingCompactFlags;
 constexpr unsigned kBindingSortValuesIn = kBindingCompactOffsets;
 constexpr unsigned kBindingSortKeysOut = kBindingCompactValues;
 constexpr unsigned kBindingSortValuesOut = kBindingCompactOut;
+constexpr unsigned kBindingSortCount = kBindingScanOut;         // the element count, when only the GPU knows it
 
 constexpr unsigned kBindingStageFirst = 16;
 

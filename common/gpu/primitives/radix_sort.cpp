@@ -30,6 +30,15 @@ RadixSort::RadixSort()
     : count_(Program::compute("common/shaders/primitives/radix_count.comp")), scatter_(Program::compute("common/shaders/primitives/radix_scatter.comp")) {}
 
 void RadixSort::sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_bits) {
+    run(keys, values, n, nullptr, key_bits);
+}
+
+void RadixSort::sort(Buffer& keys, Buffer& values, std::size_t n, const Buffer& count, unsigned key_bits) {
+    if (count.size() < 4) throw std::out_of_range("RadixSort: the count buffer holds no uint");
+    run(keys, values, n, &count, key_bits);
+}
+
+void RadixSort::run(Buffer& keys, Buffer& values, std::size_t n, const Buffer* gpu_count, unsigned key_bits) {
     if (key_bits > 32) throw std::invalid_argument("RadixSort: key_bits " + std::to_string(key_bits) + " > 32");
     if (n > 0xffffffffu) throw std::length_error("RadixSort: more than 2^32 - 1 elements");
     if (keys.size() < n * 4 || values.size() < n * 4)
@@ -54,7 +63,8 @@ void RadixSort::sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_b
     Buffer* dst_keys = &keys_tmp_;
     Buffer* dst_values = &values_tmp_;
     for (unsigned shift = 0; shift < key_bits; shift += kRadixBits) {
-        pass(*src_keys, *src_values, *dst_keys, *dst_values, n, shift, std::min(kRadixBits, key_bits - shift), window);
+        pass(*src_keys, *src_values, *dst_keys, *dst_values, n, shift, std::min(kRadixBits, key_bits - shift), window,
+             gpu_count);
         std::swap(src_keys, dst_keys);
         std::swap(src_values, dst_values);
     }
@@ -68,13 +78,15 @@ void RadixSort::sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_b
 }
 
 void RadixSort::pass(const Buffer& keys_in, const Buffer& values_in, Buffer& keys_out, Buffer& values_out,
-                     std::size_t n, unsigned shift, unsigned bits, std::size_t window) {
+                     std::size_t n, unsigned shift, unsigned bits, std::size_t window, const Buffer* gpu_count) {
     const std::size_t tiles = tiles_for(n);
     for (const Program* p : {&count_, &scatter_}) {
         p->set("tiles", unsigned(tiles));
         p->set("shift", shift);
         p->set("mask", (1u << bits) - 1u);
+        p->set("count_from_buffer", gpu_count ? 1u : 0u);
     }
+    if (gpu_count) gpu_count->bind_range(kBindingSortCount, 0, 4);
     scatter_.set("total", unsigned(n));
     // 1. Count the digits of every tile, window by window.
     bind_window(counts_, kBindingSortCounts, 0, kRadix * tiles);
@@ -88,6 +100,7 @@ void RadixSort::pass(const Buffer& keys_in, const Buffer& values_in, Buffer& key
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // 2. Where each (digit, tile) starts in the output.
     scan_.exclusive(counts_, counts_, kRadix * tiles);
+    if (gpu_count) gpu_count->bind_range(kBindingSortCount, 0, 4);   // the scan used that point
     // 3. Scatter every input window into every output window (one of each when the arrays fit one block).
     bind_window(counts_, kBindingSortCounts, 0, kRadix * tiles);
     for (std::size_t begin = 0; begin < n; begin += window) {

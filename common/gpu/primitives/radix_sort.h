@@ -31,12 +31,17 @@ public:
     // values[0..n) along; elements with equal low bits keep their order, and the other bits of a key ride along
     // unchanged. Both buffers must hold n uints and be different buffers.
     void sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_bits = 32);
+    // The same when only the GPU knows how many elements there are: the first uint of `count` (written by an earlier
+    // pass, at most n) is the count, and n only a bound that sizes the passes. Nothing is read back. Elements from
+    // the count on take no part (their values afterwards are unspecified).
+    void sort(Buffer& keys, Buffer& values, std::size_t n, const Buffer& count, unsigned key_bits = 32);
     // Elements per window (bound range) for arrays beyond one storage block: for tests; 0 = from the GL limit.
     void set_window_for_testing(std::size_t elements) { window_override_ = elements; }
 
 private:
+    void run(Buffer& keys, Buffer& values, std::size_t n, const Buffer* gpu_count, unsigned key_bits);
     void pass(const Buffer& keys_in, const Buffer& values_in, Buffer& keys_out, Buffer& values_out, std::size_t n,
-              unsigned shift, unsigned bits, std::size_t window);
+              unsigned shift, unsigned bits, std::size_t window, const Buffer* gpu_count);
     Scan scan_;
     Program count_, scatter_;
     Buffer keys_tmp_, values_tmp_, counts_;

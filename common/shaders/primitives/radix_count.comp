@@ -14,12 +14,13 @@ shared uint histogram[RADIX];
 void main() {
     const uint tile = rt_group_index();
     const uint t = gl_LocalInvocationID.x;
+    const uint count = window_count();
     if (t < RADIX) histogram[t] = 0u;
     barrier();
     // Order does not matter for counting: neighbouring threads read neighbouring keys.
     for (uint k = 0u; k < SORT_ITEMS; ++k) {
         const uint i = tile * SORT_TILE + k * SORT_THREADS + t;
-        if (i < n) atomicAdd(histogram[(keys_in[i] >> shift) & mask], 1u);
+        if (i < count) atomicAdd(histogram[(keys_in[i] >> shift) & mask], 1u);
     }
     barrier();
     if (t < RADIX) counts[count_index(t, tile)] = histogram[t];

@@ -27,6 +27,7 @@ layout(std430, binding = RT_BINDING_SORT_VALUES_OUT) writeonly buffer ValuesOut 
 uniform uint out_begin;
 uniform uint out_end;
 uniform uint total;                       // all elements (every window): the end of the last digit's last tile
+                                          // (the GPU's count instead, with count_from_buffer)
 
 shared uint rank[RADIX * SORT_THREADS];   // rank[d * SORT_THREADS + t]
 shared uint thread_total[SORT_THREADS];
@@ -37,12 +38,14 @@ void main() {
     const uint tile = rt_group_index();
     const uint t = gl_LocalInvocationID.x;
     const uint first = tile * SORT_TILE + t * SORT_ITEMS;
+    const uint count = window_count();
+    const uint end_of_all = count_from_buffer != 0u ? min(sort_count, total) : total;
 
     if (t == 0u) lands_in_window = false;
     barrier();
     if (t < RADIX) {
         const uint i = count_index(t, tile);
-        const uint begin = offsets[i], end = i + 1u < RADIX * tiles ? offsets[i + 1u] : total;
+        const uint begin = offsets[i], end = i + 1u < RADIX * tiles ? offsets[i + 1u] : end_of_all;
         if (begin < end && begin < out_end && end > out_begin) lands_in_window = true;
     }
     barrier();
@@ -50,7 +53,7 @@ void main() {
 
     for (uint d = 0u; d < RADIX; ++d) rank[d * SORT_THREADS + t] = 0u;
     for (uint k = 0u; k < SORT_ITEMS; ++k)
-        if (first + k < n) rank[((keys_in[first + k] >> shift) & mask) * SORT_THREADS + t] += 1u;
+        if (first + k < count) rank[((keys_in[first + k] >> shift) & mask) * SORT_THREADS + t] += 1u;
     barrier();
 
     // Exclusive scan of the RADIX * SORT_THREADS table: each thread sums RADIX consecutive entries, the threads'
@@ -77,7 +80,7 @@ void main() {
 
     // Only thread t touches column t of rank from here on.
     for (uint k = 0u; k < SORT_ITEMS; ++k) {
-        if (first + k >= n) break;
+        if (first + k >= count) break;
         const uint key = keys_in[first + k];
         const uint d = (key >> shift) & mask;
         const uint destination = digit_base[d] + rank[d * SORT_THREADS + t];
