@@ -52,12 +52,14 @@ void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {
     chunks_.dispatch_threads(n);
     barrier();
     const std::vector<std::uint32_t> box_cells = chunk_pairs_.download<std::uint32_t>(2);
+    ++syncs_;
     if (box_cells[1] != 0)
         throw SceneError("the grid's " + std::to_string(cells) + " cells are too many for the scene's " +
                          std::to_string(n) + " triangles: their bounding boxes cover more than 2^32 cells in all " +
                          "(lower --grid-lambda or --grid-res)");
     scan_.exclusive(offsets_, offsets_, n, &total_);
     const std::size_t chunks = total_.download_value<std::uint32_t>();
+    ++syncs_;
     check_fits(chunks * 4, limit, std::to_string(chunks) + " build chunks");
 
     // 2. Count the cells of each chunk, scan the counts to where each chunk's pairs start; read back the pairs.
@@ -68,6 +70,7 @@ void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {
     barrier();
     scan_.exclusive(chunk_pairs_, chunk_pairs_, chunks, &total_);
     pairs_ = total_.download_value<std::uint32_t>();
+    ++syncs_;
     const std::size_t bytes = kHeaderBytes + cells * 8 + pairs_ * 4;
     check_fits(bytes, limit,
                std::to_string(cells) + " cells and " + std::to_string(pairs_) + " (cell, triangle) pairs");
@@ -108,6 +111,7 @@ void GpuGrid::bind() const {
 }
 
 std::vector<std::uint64_t> GpuGrid::traversal_stats() const {
+    ++syncs_;
     const std::vector<std::uint32_t> words = grid_.download<std::uint32_t>(kStatCount, sizeof(GridParams) / 4);
     std::vector<std::uint64_t> stats(kStatCount / 2);
     for (std::size_t i = 0; i < stats.size(); ++i) stats[i] = words[2 * i] | std::uint64_t(words[2 * i + 1]) << 32;
@@ -115,10 +119,12 @@ std::vector<std::uint64_t> GpuGrid::traversal_stats() const {
 }
 
 std::vector<std::uint32_t> GpuGrid::cell_ranges() const {
+    ++syncs_;
     return grid_.download<std::uint32_t>(std::size_t(params_.cell_count) * 2, kHeaderBytes / 4);
 }
 
 std::vector<std::uint32_t> GpuGrid::triangles() const {
+    ++syncs_;
     return grid_.download<std::uint32_t>(pairs_, kHeaderBytes / 4 + std::size_t(params_.cell_count) * 2);
 }
 

@@ -46,6 +46,9 @@ public:
     // Read-backs (stats and tests): [begin, end) per cell, and the triangle ids of all cells.
     std::vector<std::uint32_t> cell_ranges() const;
     std::vector<std::uint32_t> triangles() const;
+    // Read-backs since construction, each a wait for the GPU: three per build (the boxes' cells, the chunks, the
+    // pairs: they size the next passes), and the ones above.
+    std::uint64_t syncs() const { return syncs_; }
 
     static constexpr std::size_t kStatCount = 32;   // uints of counters after the header (GRID_STAT_COUNT)
     static constexpr std::size_t kHeaderBytes = sizeof(GridParams) + kStatCount * 4;
@@ -53,6 +56,7 @@ public:
 private:
     GridParams params_;
     std::size_t pairs_ = 0;
+    mutable std::uint64_t syncs_ = 0;
     gpu::Program chunks_, count_, write_, ranges_;
     gpu::Scan scan_;
     gpu::RadixSort sort_;

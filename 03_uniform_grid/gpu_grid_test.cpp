@@ -216,9 +216,15 @@ TEST(GridRenderer, TracedPrimaryRaysGiveBruteForcesFrame) {
         GridOptions options;
         options.trace_primary = true;
         const FrameResult grid = render_grid(s, settings, options);
-        expect_same_frame(grid, brute.render(s, settings), name);
+        const FrameResult reference = brute.render(s, settings);
+        expect_same_frame(grid, reference, name);
         EXPECT_GT(grid.extra["grid"]["traversal"]["primary"]["rays"], 0);
         EXPECT_EQ(grid.extra["grid"]["loop_bound_reached"], 0);
+        // The frame's read-backs: the pipeline's (the same rays as brute force's, so as many) and the grid's: three
+        // in its build, two for its statistics.
+        EXPECT_EQ(grid.extra["grid"]["gpu_cpu_syncs"], 5u) << name;
+        EXPECT_EQ(std::uint64_t(grid.extra["gpu_cpu_syncs"]), std::uint64_t(reference.extra["gpu_cpu_syncs"]) + 5u)
+            << name;
     }
 }
 

@@ -39,6 +39,7 @@ void to_json(nlohmann::json& out, const GridFrameStats& s) {
     }
     out["traversal"] = kinds;
     out["loop_bound_reached"] = s.loop_bound_reached;
+    out["gpu_cpu_syncs"] = s.gpu_cpu_syncs;
 }
 
 }  // namespace rt

@@ -31,6 +31,7 @@ struct GridFrameStats {
     double build_ms = 0.0;
     std::array<GridWalkStats, kRayKinds> walks{};
     std::uint64_t loop_bound_reached = 0;       // rays that stopped at the DDA's step bound
+    std::uint64_t gpu_cpu_syncs = 0;            // the grid's read-backs in the frame: its build's 3, the stats' 2
 };
 
 // empty_cells and max_triangles_per_cell from the grid's per-cell [first, end) ranges.

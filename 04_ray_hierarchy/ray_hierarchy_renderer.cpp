@@ -72,6 +72,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     }
     f.fold_ms = pass_ms(result, "rh_local.fold");
     result.extra["ray_hierarchy"] = f;
+    add_syncs(result, f.gpu_cpu_syncs);
 }
 
 }  // namespace rt

@@ -155,6 +155,7 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
         for (std::size_t k = 0; k < 2; ++k) f.kept[k] = {batch_stats_[k].batches, batch_stats_[k].rays};
     for (std::size_t k = 0; k < 2; ++k) f.sort_ms[k] = pass_ms(result, kSortPhase[k]);
     result.extra["ray_sorting"] = f;
+    add_syncs(result, f.gpu_cpu_syncs);
 }
 
 }  // namespace rt

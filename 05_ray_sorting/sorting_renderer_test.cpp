@@ -49,6 +49,16 @@ void expect_same_frame_sorted_or_not(const std::string& name, SortOptions on, in
     }
     EXPECT_NE(a.extra["ray_hierarchy"]["kinds"]["shadow"]["node_tests"],
               b.extra["ray_hierarchy"]["kinds"]["shadow"]["node_tests"]) << name;
+    // Sorting reads nothing back inside a batch, however many batches there are: its read-backs are the frame
+    // statistics' (the chunk sums, and auto's choices). The frame's total is the pipeline's (the same rays, so the
+    // same as unsorted), the hierarchy's and the sorting's.
+    const std::uint64_t sorting_syncs = b.extra["ray_sorting"]["gpu_cpu_syncs"];
+    EXPECT_EQ(sorting_syncs, on.mode == SortMode::automatic ? 2u : 1u) << name;
+    const std::uint64_t pipeline_a = std::uint64_t(a.extra["gpu_cpu_syncs"]) -
+                                     std::uint64_t(a.extra["ray_hierarchy"]["gpu_cpu_syncs"]);
+    const std::uint64_t pipeline_b = std::uint64_t(b.extra["gpu_cpu_syncs"]) -
+                                     std::uint64_t(b.extra["ray_hierarchy"]["gpu_cpu_syncs"]) - sorting_syncs;
+    EXPECT_EQ(pipeline_b, pipeline_a) << name;
     if (shadow_batches) *shadow_batches = std::uint64_t(shadow["batches"]);
 }
 

@@ -71,6 +71,11 @@ double GpuStage::pass_ms(const FrameResult& result, const std::string& phase) {
     return ms == times->end() ? 0.0 : ms->get<double>();
 }
 
+void GpuStage::add_syncs(FrameResult& result, std::uint64_t syncs) {
+    nlohmann::json& total = result.extra["gpu_cpu_syncs"];
+    total = (total.is_number_unsigned() ? total.get<std::uint64_t>() : 0u) + syncs;
+}
+
 void GpuStage::add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats) {
     const std::map<std::string, double FrameStats::*> bucket = {
         {"upload", &FrameStats::upload_ms}, {"build", &FrameStats::build_ms},   {"raster", &FrameStats::raster_ms},
@@ -143,6 +148,9 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     std::vector<std::string> programs = s.wavefront.programs();
     for (std::string& p : stage_programs()) programs.push_back(std::move(p));
     result.extra["programs"] = programs;
+    // The frame's read-backs (each a wait for the GPU): the pipeline's here; a stage that reads back adds its own
+    // in add_stage_stats (and says how many in its own section).
+    result.extra["gpu_cpu_syncs"] = s.wavefront.syncs();
     add_stage_stats(result);
 
     if (viewer_) {

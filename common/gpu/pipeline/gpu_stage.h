@@ -53,6 +53,8 @@ public:
     static void add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats);
     // A phase's GPU time in a finished frame (its pass_time_ms entry, "rh_build.shadow" say); 0 when it did not run.
     static double pass_ms(const FrameResult& result, const std::string& phase);
+    // Adds a stage's read-backs of the frame to the stats' gpu_cpu_syncs (the pipeline's are there already).
+    static void add_syncs(FrameResult& result, std::uint64_t syncs);
 
 protected:
     // The stage's acceleration structure over the uploaded scene (gpu_scene()); time its passes with

@@ -34,6 +34,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     samples_ = 0;
     pass_order_.clear();
     dispatches_.clear();
+    syncs_ = 0;
     hit_records_.clear();
 
     // The variant: only the effects the scene calls for (settings.effects is already resolved from --effects).
@@ -404,10 +405,12 @@ Image Wavefront::finish_frame(RayCounters& counters) {
     for (std::size_t band = 0; band < image_bands_.size() && settings_.need_image; ++band) {
         const auto [first, count] = band_pixels(band);
         const std::vector<glm::vec4> sums = image_bands_[band].download<glm::vec4>(count);
+        ++syncs_;
         for (std::size_t i = 0; i < count; ++i)
             image.pixels[first + i] = glm::vec3(sums[i]) / float(std::max(samples_, 1));
     }
     const std::vector<std::uint64_t> all = counters_.read();
+    ++syncs_;
     if (all[kCounterLoopsCut] != 0)
         throw std::runtime_error(
             "the GL driver ended the loops of " + std::to_string(all[kCounterLoopsCut]) +

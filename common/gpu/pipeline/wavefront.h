@@ -157,6 +157,9 @@ public:
     // its collect step count with it: "trace" is trace.comp or trace_batch, trace_collect.comp and the scan).
     const std::vector<std::string>& passes() const { return pass_order_; }
     const std::map<std::string, int>& dispatches() const { return dispatches_; }
+    // Read-backs since begin_frame, each a wait for the GPU: one per compaction (the next pass' length), the image
+    // and the counters at the end, and what --dump-hits, --pixel and --heatmap read. A stage's own come on top.
+    std::uint64_t syncs() const { return syncs_; }
     // The settings uniforms on a stage's own pass (wf_max_depth, wf_image_size, ...), for primary-hit passes.
     void set_uniforms(const Program& program) const;
     // Records a stage pass in passes() (e.g. "gbuffer").
@@ -230,6 +233,7 @@ private:
     std::vector<RayWork> ray_work_;   // --pixel, drained after each sample
     std::vector<std::string> pass_order_;
     std::map<std::string, int> dispatches_;
+    std::uint64_t syncs_ = 0;
 };
 
 }  // namespace rt::gpu

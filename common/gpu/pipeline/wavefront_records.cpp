@@ -42,6 +42,7 @@ std::size_t Wavefront::tests_words() const {
 void Wavefront::drain_watch() {
     std::uint32_t used = 0;
     tests_per_pixel_.download(&used, sizeof used, pixels_ * sizeof(std::uint32_t));
+    ++syncs_;
     if (used > kWatchCapacity)
         throw std::runtime_error("--pixel: the pixel's rays make more than " + std::to_string(kWatchCapacity) +
                                  " parts of a ray tree in one sample; watch a simpler pixel or use fewer lights");
@@ -49,6 +50,7 @@ void Wavefront::drain_watch() {
     std::vector<std::uint32_t> words(std::size_t(used) * kWatchEntryWords);
     tests_per_pixel_.download(words.data(), words.size() * sizeof(std::uint32_t),
                               (pixels_ + 1) * sizeof(std::uint32_t));
+    ++syncs_;
     for (std::uint32_t e = 0; e < used; ++e) {
         const std::uint32_t* w = &words[std::size_t(e) * kWatchEntryWords];
         const std::uint64_t tests = std::uint64_t(w[2]) | std::uint64_t(w[3]) << 32;
@@ -63,6 +65,7 @@ void Wavefront::drain_watch() {
 // --dump-hits: every slot of a primary batch inside the image is a primary ray (triangle -1 where the G-buffer is
 // empty).
 void Wavefront::record_primary_slots(std::size_t slots) {
+    ++syncs_;
     for (const WavefrontHit& h : hit_slots_.download<WavefrontHit>(slots))
         if (h.ray.pixel != kNoPixel && recorded(h.ray.pixel))
             hit_records_.push_back(make_record(h.ray, samples_, RayKind::Primary, h.triangle,
@@ -72,6 +75,7 @@ void Wavefront::record_primary_slots(std::size_t slots) {
 // --dump-hits: the rays of a trace or shadow pass with their results.
 void Wavefront::record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow) {
     const std::vector<WavefrontRay> queue = rays.download<WavefrontRay>(count, first);
+    syncs_ += 2;   // the rays, then their results
     if (shadow) {
         const std::vector<std::uint32_t> occluded = results_.download<std::uint32_t>(count);
         for (std::size_t i = 0; i < count; ++i)
@@ -93,7 +97,10 @@ void Wavefront::finish_frame(FrameResult& result) {
     result.image = finish_frame(result.stats.counters);
     if (settings_.record_hits) result.hits = std::move(hit_records_);
     hit_records_.clear();
-    if (settings_.record_tests_per_pixel) result.tests_per_pixel = tests_per_pixel_.download<std::uint32_t>(pixels_);
+    if (settings_.record_tests_per_pixel) {
+        result.tests_per_pixel = tests_per_pixel_.download<std::uint32_t>(pixels_);
+        ++syncs_;
+    }
     result.ray_work = std::move(ray_work_);
     ray_work_.clear();
     result.ray_work_steps = traversal_.steps;

@@ -67,8 +67,17 @@ std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned st
                                  std::size_t split, std::uint32_t* before_split) {
     offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
     scan_.exclusive_flags(flags_, offsets_, n, &counts_, 0);
-    const std::uint32_t total = counts_.download_value<std::uint32_t>(0);
-    if (before_split) *before_split = split < n ? offsets_.download_value<std::uint32_t>(split) : total;
+    // The total and, with a split, the scan's value there: one read-back of two words.
+    const bool split_inside = before_split && split < n;
+    if (split_inside) {
+        offsets_.copy_to(counts_, sizeof(std::uint32_t), split * sizeof(std::uint32_t), sizeof(std::uint32_t));
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    std::uint32_t words[2] = {};
+    counts_.download(words, (split_inside ? 2 : 1) * sizeof(std::uint32_t));
+    ++syncs_;
+    const std::uint32_t total = words[0];
+    if (before_split) *before_split = split_inside ? words[1] : total;
     if (total == 0) return 0;
     out.reserve(std::size_t(total) * stride_uints * sizeof(std::uint32_t));
     flags_.bind(kBindingCompactFlags);
