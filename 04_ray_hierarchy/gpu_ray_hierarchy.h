@@ -9,10 +9,9 @@
 //             them (object_tree.h: Morton codes, the shared radix sort, clusters, levels; shaders/ot_build.comp).
 //   traverse  candidate pairs (ray side, object side) (rh_pairs.glsl): the top ray level against every top item
 //             (triangles, mesh objects or the tree's root), implicitly; per chunk of pairs: rh_cull.comp (the
-//             cone+sphere test; each survivor splits one side and counts its children), the shared exclusive scan
-//             (common/gpu/primitives/scan.h), rh_expand.comp writing the children pairs, window by window, each
-//             window traced on before the next (depth first over steps). The scan runs over the sums of work groups
-//             of 64 pairs; rh_expand.comp adds the offsets inside a group.
+//             cone+sphere test; each survivor splits one side, counts its children and reserves their places: an
+//             atomic per work group of 64 pairs on the children's count), rh_expand.comp writing the children
+//             pairs, window by window, each window traced on before the next (depth first over steps).
 //   local     rh_leaf.comp, on every (ray, triangle) pair a step leaves: the ray against the triangle's sphere, then
 //             the exact ray/triangle test; for closest hits then rh_fold.comp (rh_closest.glsl: brute force's hit).
 //
@@ -107,7 +106,7 @@ private:
         args_pass_, tally_pass_;
     gpu::Compaction compaction_;
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
-    gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_sums_, group_heads_, group_count_,
+    gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_heads_, group_count_,
         head_flags_, group_list_, state_, hits_, hits_tmp_, prune_flags_, prune_offsets_;
     gpu::Buffer tally_;   // per ray kind, the GPU's sums of the traversal's counts (rh_tally.comp)
     gpu::Buffer args_;   // indirect dispatch arguments per step (3 uints each), written by rh_args.comp

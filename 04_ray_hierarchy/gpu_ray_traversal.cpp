@@ -1,8 +1,8 @@
 // Stage 04's traversal, the pairs' side of GpuRayHierarchy (gpu_ray_hierarchy.h): candidate pairs (ray side, object
-// side) from the top, tested (rh_cull.comp), scanned and expanded (rh_expand.comp) step by step, depth first, window
-// by window; the (ray, triangle) pairs of the last step to the leaves (rh_leaf.comp), and for closest hits the fold
-// (rh_fold.comp, rh_closest.glsl). The groups, the rays' build and the stats are in gpu_ray_hierarchy.cpp, the
-// objects' side in gpu_object_tree.cpp.
+// side) from the top, tested and their children counted and placed (rh_cull.comp), expanded (rh_expand.comp) step by
+// step, depth first, window by window; the (ray, triangle) pairs of the last step to the leaves (rh_leaf.comp), and for
+// closest hits the fold (rh_fold.comp, rh_closest.glsl). The groups, the rays' build and the stats are in
+// gpu_ray_hierarchy.cpp, the objects' side in gpu_object_tree.cpp.
 #include <algorithm>
 #include <optional>
 #include <stdexcept>
@@ -26,8 +26,7 @@ void GpuRayHierarchy::step_buffers(int step, std::size_t pairs) {
         offsets_.resize(step + 1);
     }
     counts_[step].reserve(pairs * 4);
-    offsets_[step].reserve((pairs / 64 + 1) * 4);   // the work groups' offsets
-    group_sums_.reserve((capacity_ / 64 + 1) * 4);
+    offsets_[step].reserve((pairs / 64 + 1) * 4);   // the work groups' first output places
 }
 
 void GpuRayHierarchy::set_source(const Program& p, const Source& s) const {
@@ -70,7 +69,7 @@ void GpuRayHierarchy::traverse(int top) {
     }
 }
 
-// One chunk of pairs at one step of the traversal: test, scan, the leaves' pairs to rh_leaf.comp, then the
+// One chunk of pairs at one step of the traversal: test and place, the leaves' pairs to rh_leaf.comp, then the
 // children expanded window by window, each window traced on before the next (depth first, so each step needs one
 // buffer of capacity() pairs).
 //
@@ -99,7 +98,8 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
     {
         std::optional<gpu::GpuTimer::Scope> timed;
         if (timer) timed.emplace(*timer, phase("rh_traverse"));
-        if (on_gpu) group_sums_.clear_u32(0);   // the scan reads the sums of every work group the bound may need
+        const std::uint32_t zero = 0;   // the children's count, which rh_cull.comp's groups add to
+        info_.upload(&zero, sizeof zero, (slot + 1) * sizeof zero);
         in_->rays.bind(gpu::kWavefrontBindingRaysIn);
         nodes_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
         spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
@@ -107,15 +107,14 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
         counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
         info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
-        group_sums_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+        offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 4);   // each work group's first output place
         set_source(cull_, src);
         cull_.set("rh_group_first", unsigned(in_->first + group_.first));
         cull_.set("rh_branching", b);
         cull_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
         cull_.set("rh_box_test", options.box_test ? 1u : 0u);
+        cull_.set("rh_children_slot", slot + 1);
         dispatch_chunk(cull_, step, count, on_gpu);
-        const std::size_t groups = (std::size_t(count) + 63) / 64;
-        compaction_.scan().exclusive(group_sums_, offsets_[step], groups, &info_, (slot + 1) * 4);
         if (!chain) {   // the chunk's length (when only the GPU knows it) and its children's, in one read-back
             const std::vector<std::uint32_t> lengths = read_info(int(slot), 2);
             if (on_gpu) count = lengths[0];

@@ -1,6 +1,6 @@
 #version 450 core
 // One thread: the indirect dispatch arguments (work groups of 64, 1, 1) of a chunk whose length only the GPU knows
-// (rh_info[rh_slot], written by the previous step's scan), so the traversal goes on without a read-back.
+// (rh_info[rh_slot], counted by the previous step's rh_cull.comp), so the traversal goes on without a read-back.
 #include "rh_common.glsl"
 #include "rh_info.glsl"
 

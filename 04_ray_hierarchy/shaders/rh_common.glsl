@@ -15,12 +15,12 @@
 #define RH_BINDING_PAIRS (WF_BINDING_TRAVERSAL_FIRST + 3)     // uvec2[] (node, item) candidate pairs read
 #define RH_BINDING_PAIRS_OUT (WF_BINDING_TRAVERSAL_FIRST + 4) // uvec2[] pairs written by the expansion
 #define RH_BINDING_COUNTS (WF_BINDING_TRAVERSAL_FIRST + 5)    // uint[] per tested pair: children to expand, or 0
-#define RH_BINDING_OFFSETS (WF_BINDING_TRAVERSAL_FIRST + 6)   // uint[] exclusive scan of the work groups' sums
+#define RH_BINDING_OFFSETS (WF_BINDING_TRAVERSAL_FIRST + 6)   // uint[] per work group: its first output place
 #define RH_BINDING_INFO (WF_BINDING_TRAVERSAL_FIRST + 7)      // uint[8]: survivors, hit-list size, fold flag,
                                                               // scan total, fold tests per ray kind
 #define RH_BINDING_ORDER RH_BINDING_NODES                     // expansion, tree build: triangle ids in leaf order
 #define RH_BINDING_KEYS RH_BINDING_PAIRS                      // tree build: Morton codes
-#define RH_BINDING_GROUP_SUMS RH_BINDING_PAIRS_OUT            // test pass: each work group's sum of counts
+#define RH_BINDING_GROUP_OFFSETS RH_BINDING_PAIRS_OUT         // test pass: writes RH_BINDING_OFFSETS' buffer
 #define RH_BINDING_HITS RH_BINDING_PAIRS_OUT                  // leaf and fold passes: the hit list
 #define RH_BINDING_STATE RH_BINDING_COUNTS                    // leaf and fold passes: per-ray closest-hit state
 

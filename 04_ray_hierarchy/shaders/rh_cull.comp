@@ -1,16 +1,18 @@
 #version 450 core
 // The conservative test of one chunk of candidate pairs (ray side, object side) (rh_pairs.glsl), each on its own
 // levels: a ray node against an object node or a triangle (rh_may_hit), a single ray against an object node
-// (rh_ray_may_hit, then with --box-test its box: rh_ray_box_test). A survivor splits one side (object_tree.h): the ray node into its children, or the object node
-// into its children (nodes, or a leaf's triangles); a triangle is never split, a single ray neither. (ray, triangle)
-// pairs are not tested here: rh_leaf.comp gives them the sphere test and the exact test. Every split takes one side
-// one level down, so the pairs of one step are equally deep and the (ray, triangle) pairs are all in the last step,
-// which only rh_leaf.comp sees.
+// (rh_ray_may_hit, then with --box-test its box: rh_ray_box_test). A survivor splits one side (object_tree.h): the ray
+// node into its children, or the object node into its children (nodes, or a leaf's triangles); a triangle is never
+// split, a single ray neither. (ray, triangle) pairs are not tested here: rh_leaf.comp gives them the sphere test and
+// the exact test. Every split takes one side one level down, so the pairs of one step are equally deep and the (ray,
+// triangle) pairs are all in the last step, which only rh_leaf.comp sees.
 //
-// Writes for each pair how many pairs it expands to (0 when rejected), and each work group of 64 pairs its total:
-// the shared scan (common/gpu/primitives/scan.h) runs over these totals only, 64 times fewer values than pairs. A
-// pair's place inside its group comes from the shared-memory atomic that sums the group (in whatever order the threads
-// run: the order of pairs changes nothing the traversal computes, the hits, the occlusion or the counts).
+// Writes for each pair how many pairs it expands to (0 when rejected). A pair's place inside its work group of 64 comes
+// from the shared-memory atomic that sums the group, and the group's first place among the chunk's children from one
+// atomic on the children's count (rh_info[rh_children_slot]), which thereby ends as their number: no scan, no pass
+// between this one and rh_expand.comp (until 2026-12-05 a scan of the groups' sums placed them, up to three more
+// dispatches per step). Both atomics hand out places in whatever order the threads and groups run: the order of the
+// pairs changes nothing the traversal computes, the hits, the occlusion or the counts.
 // rh_counts[i] packs the count (bits 0-12, at most 4096), that place (bits 13-30, at most 63 x 4096) and the side
 // split (bit 31: the object side).
 #include "rh_common.glsl"
@@ -23,7 +25,7 @@ layout(std430, binding = RH_BINDING_NODES) readonly buffer Nodes { RhNode rh_nod
 layout(std430, binding = RH_BINDING_SPHERES) readonly buffer Spheres { vec4 rh_spheres[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject rh_objects[]; };
 layout(std430, binding = RH_BINDING_COUNTS) writeonly buffer Counts { uint rh_counts[]; };
-layout(std430, binding = RH_BINDING_GROUP_SUMS) writeonly buffer GroupSums { uint rh_group_sums[]; };
+layout(std430, binding = RH_BINDING_GROUP_OFFSETS) writeonly buffer GroupOffsets { uint rh_group_offsets[]; };
 
 uniform uint rh_level_first[32];   // ray level l >= 1: its node 0 in rh_nodes
 uniform uint rh_level_nodes[32];   // nodes on ray level l (level 0: the group's rays)
@@ -31,6 +33,7 @@ uniform uint rh_group_first;       // wf_rays_in index of the group's ray 0
 uniform uint rh_branching;
 uniform uint rh_split_larger;      // 1 (--objects tree): split the larger side; 0: the object side first
 uniform uint rh_box_test;          // 1 (--box-test on): a single ray against an object node's box too
+uniform uint rh_children_slot;     // RH_INFO_STEP_COUNT + step + 1: the children's count (0 before the pass)
 
 shared uint rh_group_sum;
 shared uint rh_level_in[32], rh_level_out[32];
@@ -88,7 +91,7 @@ void main() {
     }
     barrier();
     if (lane == 0u) {
-        rh_group_sums[rt_group_index()] = rh_group_sum;
+        rh_group_offsets[rt_group_index()] = atomicAdd(rh_info[rh_children_slot], rh_group_sum);
         rh_add64(RH_INFO_OBJECT_IN, rh_object_in);
         rh_add64(RH_INFO_OBJECT_OUT, rh_object_out);
     }

@@ -1,11 +1,11 @@
 #version 450 core
 // Expansion of the surviving pairs of a chunk: pair i writes its n pairs to outputs [o, o + n), where o is its work
-// group's offset (the exclusive scan of the groups' sums) plus its place in the group (both n and the place from
-// rh_cull.comp). The side rh_cull.comp chose is split: the ray node's children with the same object side, or the
-// object node's children (object nodes, or a leaf's triangles) with the same ray side. Only outputs inside the
-// window [rh_window_first, + rh_window_count) are written: windows keep each output within one buffer, so any
-// number of survivors is expanded (in several windows) and no pair is ever dropped. A thread writes at most B (16)
-// children, or one mesh object's triangles (at most 4096: the loop limit of docs/gpu.md).
+// group's first place among the chunk's children plus its place in the group (n and both places from rh_cull.comp). The
+// side rh_cull.comp chose is split: the ray node's children with the same object side, or the object node's children
+// (object nodes, or a leaf's triangles) with the same ray side. Only outputs inside the window [rh_window_first, +
+// rh_window_count) are written: windows keep each output within one buffer, so any number of survivors is expanded (in
+// several windows) and no pair is ever dropped. A thread writes at most B (16) children, or one mesh object's triangles
+// (at most 4096: the loop limit of docs/gpu.md).
 #include "rh_common.glsl"
 #include "rh_pairs.glsl"
 

@@ -12,7 +12,7 @@
 #define RH_INFO_LEVEL_OUT 80u     // 64-bit [80 + 2 l]: those that survived (level 0: the exact tests)
 #define RH_INFO_LEAF_PAIRS 144u   // 64-bit: (ray, triangle) pairs given to rh_leaf.comp
 #define RH_INFO_BOX_TESTS 146u    // 64-bit: the box tests of those pairs (--box-test on)
-#define RH_INFO_STEP_COUNT 160u  // [160 + s]: the length of step s's chunk, written by step s - 1's scan (s < 64)
+#define RH_INFO_STEP_COUNT 160u  // [160 + s]: the length of step s's chunk, counted by step s - 1's cull (s < 64)
 #define RH_INFO_WORDS 224u
 
 layout(std430, binding = RH_BINDING_INFO) buffer Info { uint rh_info[]; };
