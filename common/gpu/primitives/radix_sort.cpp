@@ -86,10 +86,13 @@ void RadixSort::pass(const Buffer& keys_in, const Buffer& values_in, Buffer& key
         p->set("mask", (1u << bits) - 1u);
         p->set("count_from_buffer", gpu_count ? 1u : 0u);
     }
-    if (gpu_count) gpu_count->bind_range(kBindingSortCount, 0, 4);
+    // The count's binding holds a buffer even without a GPU count: the shaders do not read it then, but a compiler
+    // may load it ahead of the branch.
+    const Buffer& count_binding = gpu_count ? *gpu_count : counts_;
     scatter_.set("total", unsigned(n));
     // 1. Count the digits of every tile, window by window.
     bind_window(counts_, kBindingSortCounts, 0, kRadix * tiles);
+    count_binding.bind_range(kBindingSortCount, 0, 4);
     for (std::size_t begin = 0; begin < n; begin += window) {
         const std::size_t count = std::min(window, n - begin);
         bind_window(keys_in, kBindingSortKeysIn, begin, count);
@@ -100,7 +103,7 @@ void RadixSort::pass(const Buffer& keys_in, const Buffer& values_in, Buffer& key
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // 2. Where each (digit, tile) starts in the output.
     scan_.exclusive(counts_, counts_, kRadix * tiles);
-    if (gpu_count) gpu_count->bind_range(kBindingSortCount, 0, 4);   // the scan used that point
+    count_binding.bind_range(kBindingSortCount, 0, 4);   // the scan used that point
     // 3. Scatter every input window into every output window (one of each when the arrays fit one block).
     bind_window(counts_, kBindingSortCounts, 0, kRadix * tiles);
     for (std::size_t begin = 0; begin < n; begin += window) {
