@@ -30,8 +30,8 @@ gpu::Program pass(const char* name) { return gpu::Program::compute(std::string(k
 
 RaySorter::RaySorter()
     : keys_pass_(pass("ray_keys.comp")), heads_pass_(pass("chunk_heads.comp")), chunks_pass_(pass("chunks.comp")),
-      tally_pass_(pass("chunk_tally.comp")), sizes_pass_(pass("chunk_sizes.comp")), skeleton_pass_(pass("skeleton.comp")),
-      total_(sizeof(std::uint32_t)), tally_(kTallySlots * sizeof(std::uint64_t)) {
+      tally_pass_(pass("chunk_tally.comp")), sizes_pass_(pass("chunk_sizes.comp")),
+      skeleton_pass_(pass("skeleton.comp")), total_(sizeof(std::uint32_t)), tally_(kTallySlots * sizeof(std::uint64_t)) {
     reset_tally();
 }
 

@@ -122,8 +122,8 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
 std::vector<std::string> RaySortingRenderer::stage_programs() const {
     std::vector<std::string> programs = RayHierarchyRenderer::stage_programs();
     if (sort_options.sorts())
-        for (const char* p : {"ray_keys.comp", "chunk_heads.comp", "chunks.comp", "chunk_tally.comp", "chunk_sizes.comp",
-                              "skeleton.comp", "ray_gather.comp", "result_scatter.comp"})
+        for (const char* p : {"ray_keys.comp", "chunk_heads.comp", "chunks.comp", "chunk_tally.comp",
+                              "chunk_sizes.comp", "skeleton.comp", "ray_gather.comp", "result_scatter.comp"})
             programs.push_back(std::string("05_ray_sorting/shaders/") + p);
     if (sort_options.mode == SortMode::automatic)
         for (const char* p : {"order_cost.comp", "order_choice.comp"})
