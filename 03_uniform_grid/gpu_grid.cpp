@@ -31,6 +31,7 @@ GpuGrid::GpuGrid()
       total_(sizeof(std::uint32_t)) {}
 
 void GpuGrid::build(const gpu::GpuScene& scene, const GridParams& params) {
+    syncs_ = 0;
     params_ = params;
     const std::size_t limit = gpu::max_storage_block_bytes();
     const std::size_t cells = params.cell_count, n = params.triangle_count;

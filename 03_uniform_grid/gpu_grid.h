@@ -46,8 +46,8 @@ public:
     // Read-backs (stats and tests): [begin, end) per cell, and the triangle ids of all cells.
     std::vector<std::uint32_t> cell_ranges() const;
     std::vector<std::uint32_t> triangles() const;
-    // Read-backs since construction, each a wait for the GPU: three per build (the boxes' cells, the chunks, the
-    // pairs: they size the next passes), and the ones above.
+    // Read-backs since the last build() began, each a wait for the GPU: the build's three (the boxes' cells, the
+    // chunks, the pairs: they size the next passes), and the ones above.
     std::uint64_t syncs() const { return syncs_; }
 
     static constexpr std::size_t kStatCount = 32;   // uints of counters after the header (GRID_STAT_COUNT)

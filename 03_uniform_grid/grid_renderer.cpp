@@ -27,7 +27,6 @@ void GridRenderer::build(const Scene& scene, const RenderSettings& settings) {
     built_ = needs_grid(scene, settings, grid_options.trace_primary);
     if (!built_) return;   // every ray is rasterized: nothing to build
     if (!grid_) grid_ = std::make_unique<GpuGrid>();
-    frame_first_sync_ = grid_->syncs();
     // The heuristic's grid must leave room in one storage block for the pairs too: when its cells alone would take
     // over half of it, lambda is halved until they do not (reported as lambda_used). --grid-res is taken as given.
     glm::ivec3 res = grid_options.res;
@@ -89,7 +88,7 @@ void GridRenderer::add_stage_stats(FrameResult& result) {
         for (std::size_t k = 0; k < std::size_t(kRayKinds); ++k)
             stats.walks[k] = {s[k], s[kRayKinds + k], s[2 * kRayKinds + k]};
         stats.loop_bound_reached = s[3 * kRayKinds];
-        stats.gpu_cpu_syncs = grid_->syncs() - frame_first_sync_;
+        stats.gpu_cpu_syncs = grid_->syncs();
     }
     result.extra["grid"] = stats;
     add_syncs(result, stats.gpu_cpu_syncs);

@@ -34,7 +34,6 @@ private:
     static bool needs_grid(const Scene& scene, const RenderSettings& settings, bool trace_primary);
     void bind_grid() const;
 
-    std::uint64_t frame_first_sync_ = 0;      // grid_->syncs() when the frame's build began
     std::unique_ptr<GpuGrid> grid_;           // created with the first frame that needs it (needs the context)
     bool built_ = false;
     float lambda_used_ = kDefaultGridLambda;   // lambda after fitting the cells into the storage limit

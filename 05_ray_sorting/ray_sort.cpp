@@ -48,7 +48,10 @@ std::array<std::uint64_t, RaySorter::kTallySlots> RaySorter::chunk_tally() {
     return sums;
 }
 
-void RaySorter::reset_tally() { tally_.clear_u32(0); }
+void RaySorter::reset_tally() {
+    tally_.clear_u32(0);
+    syncs = 0;
+}
 
 void RaySorter::sort(const gpu::Buffer& rays, std::size_t first, std::size_t count, gpu::Buffer& order) {
     compute_keys(rays, first, count);

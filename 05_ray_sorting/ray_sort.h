@@ -18,8 +18,8 @@
 // batch whose rays fit a storage block fits too.
 //
 // Nothing is read back to the CPU: the chunk count (the sort's length) stays on the GPU, where the radix sort and
-// the decompression read it; the passes are sized for n, its bound (the first read-back-free version; until
-// 2026-12-05 each sort read the count back, a wait for the GPU in every batch).
+// the decompression read it; the passes are sized for n, its bound. (Until 2026-12-05 each sort read the count
+// back: a wait for the GPU in every batch.)
 #pragma once
 
 #include <array>
@@ -56,13 +56,14 @@ public:
     std::size_t chunk_count();
 
     // The chunk counts of every sort_keys are summed on the GPU in the tally slot set here (the renderer uses one
-    // per batch kind); chunk_tally() reads the sums back (one sync), reset_tally() clears them.
+    // per batch kind); chunk_tally() reads the sums back (one sync), reset_tally() clears them and `syncs` (the
+    // renderer calls it when a frame begins).
     static constexpr std::size_t kTallySlots = 3;
     std::size_t tally_slot = 0;
     std::array<std::uint64_t, kTallySlots> chunk_tally();
     void reset_tally();
 
-    // Read-backs (each a wait for the GPU) since construction: chunk_count() and chunk_tally() only.
+    // Read-backs (each a wait for the GPU) since the last reset_tally(): chunk_count() and chunk_tally() only.
     std::uint64_t syncs = 0;
 
 private:

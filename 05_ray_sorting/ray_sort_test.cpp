@@ -216,6 +216,7 @@ TEST(RaySorter, SortsReadNothingBackAndTallyTheirChunksOnTheGpu) {
     EXPECT_EQ(sorter.chunk_tally(), expected);
     EXPECT_EQ(sorter.syncs, 1u);
     sorter.reset_tally();
+    EXPECT_EQ(sorter.syncs, 0u) << "reset_tally() starts the count of read-backs again";
     EXPECT_EQ(sorter.chunk_tally(), (std::array<std::uint64_t, RaySorter::kTallySlots>{}));
     sorter.tally_slot = RaySorter::kTallySlots;
     const Buffer one = Buffer::from(std::vector<std::uint32_t>{1});

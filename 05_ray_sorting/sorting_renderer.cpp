@@ -57,7 +57,6 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
     compile();
     choice_.reset_tally();
     sorter_->reset_tally();
-    frame_first_sync_ = sorter_->syncs;
     const float diagonal = glm::length(scene.bounds.hi - scene.bounds.lo);
     diagonal_ = std::isfinite(diagonal) && diagonal > 0.0f ? diagonal : 1.0f;
     const unsigned lights = unsigned(scene.lights.size());
@@ -143,7 +142,7 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     if (sorter_ && sort_options.sorts()) {
         const auto chunks = sorter_->chunk_tally();
         for (std::size_t k = 0; k < 2; ++k) f.batches[k].chunks = chunks[k];
-        f.gpu_cpu_syncs = sorter_->syncs - frame_first_sync_;
+        f.gpu_cpu_syncs = sorter_->syncs;
     }
     // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
     // them with --sort on (one key); with auto the GPU's choice, read here once per frame (one more sync).

@@ -48,7 +48,6 @@ private:
     gpu::Program gather_, scatter_;
     gpu::Buffer order_, fine_order_, sorted_rays_, sorted_results_;
     std::array<SortBatchStats, 2> batch_stats_{};
-    std::uint64_t frame_first_sync_ = 0;   // sorter_->syncs when the frame began
 };
 
 }  // namespace rt
