@@ -90,6 +90,9 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     heads_ = Program::compute("04_ray_hierarchy/shaders/rh_heads.comp", d);
     groups_ = Program::compute("04_ray_hierarchy/shaders/rh_groups.comp", d);
     cull_ = Program::compute("04_ray_hierarchy/shaders/rh_cull.comp", d);
+    gpu::ShaderDefines writes_children = d;
+    writes_children.emplace("RH_CULL_WRITES_CHILDREN", "1");
+    cull_children_ = Program::compute("04_ray_hierarchy/shaders/rh_cull.comp", writes_children);
     expand_ = Program::compute("04_ray_hierarchy/shaders/rh_expand.comp", d);
     leaf_closest_ = Program::compute("04_ray_hierarchy/shaders/rh_leaf.comp", d);
     gpu::ShaderDefines shadow = d;
@@ -250,12 +253,14 @@ int GpuRayHierarchy::build(const gpu::BatchTraceInputs& in, const Group& g) {
     HierarchyKindStats& ks = cpu_stats_[g.kind];
     if (ks.levels.size() < level_nodes_.size()) ks.levels.resize(level_nodes_.size());
     for (std::size_t l = 0; l < level_nodes_.size(); ++l) ks.levels[l].nodes += level_nodes_[l];
-    // The level tables of rh_cull.comp.
+    // The level tables of rh_cull.comp (both of its variants).
     std::vector<unsigned> first(kMaxRayLevels, 0u), nodes(kMaxRayLevels, 0u);
     std::copy(level_first_.begin(), level_first_.end(), first.begin());
     std::copy(level_nodes_.begin(), level_nodes_.end(), nodes.begin());
-    cull_.set("rh_level_first", first);
-    cull_.set("rh_level_nodes", nodes);
+    for (const Program* cull : {&cull_, &cull_children_}) {
+        cull->set("rh_level_first", first);
+        cull->set("rh_level_nodes", nodes);
+    }
     return int(level_nodes_.size()) - 1;
 }
 

@@ -11,7 +11,8 @@
 //             (triangles, mesh objects or the tree's root), implicitly; per chunk of pairs: rh_cull.comp (the
 //             cone+sphere test; each survivor splits one side, counts its children and reserves their places: an
 //             atomic per work group of 64 pairs on the children's count), rh_expand.comp writing the children
-//             pairs, window by window, each window traced on before the next (depth first over steps).
+//             pairs, window by window, each window traced on before the next (depth first over steps); while the
+//             children cannot outnumber one window, rh_cull.comp writes them itself and no rh_expand.comp runs.
 //   local     rh_leaf.comp, on every (ray, triangle) pair a step leaves: the ray against the triangle's sphere, then
 //             the exact ray/triangle test; for closest hits then rh_fold.comp (rh_closest.glsl: brute force's hit).
 //
@@ -104,6 +105,7 @@ private:
     gpu::ShaderDefines compiled_for_;   // the wavefront defines the programs were compiled with
     gpu::Program spheres_, tree_, build_, heads_, groups_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_,
         args_pass_, tally_pass_;
+    gpu::Program cull_children_;   // rh_cull.comp writing the children itself (a step whose children fit one window)
     gpu::Compaction compaction_;
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
     gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_heads_, group_count_,

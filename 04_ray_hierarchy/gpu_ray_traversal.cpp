@@ -75,8 +75,9 @@ void GpuRayHierarchy::traverse(int top) {
 //
 // `on_gpu`: the chunk's length is known on the GPU only (rh_info[kInfoStepCount + step], args_ holds its dispatch),
 // and `count` is a bound of it. While the children of a chunk cannot outnumber one window (count x the most
-// children a pair has), the traversal goes on without reading anything back: the passes are dispatched indirectly.
-// Only when that bound passes capacity() are the chunk's counts read back (one sync), to cut it into windows.
+// children a pair has), the test pass writes them itself and the traversal goes on without reading anything back:
+// the next step's passes are dispatched indirectly. Only when that bound passes capacity() are the chunk's counts
+// read back (one sync), to cut it into windows for rh_expand.comp.
 void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t count, bool on_gpu) {
     if (step > kMaxSteps) throw std::logic_error("04_ray_hierarchy: more traversal steps than rh_info.glsl holds");
     step_buffers(step, count);
@@ -94,27 +95,39 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         leaves(step, count, on_gpu);
         return;
     }
+    // While the children cannot outnumber one window, the test pass writes them itself (rh_cull.comp compiled with
+    // RH_CULL_WRITES_CHILDREN) and the traversal goes on without reading anything back.
     const bool chain = std::uint64_t(count) * most <= capacity_;
+    const std::uint32_t cap = std::uint32_t(capacity_);
     {
         std::optional<gpu::GpuTimer::Scope> timed;
         if (timer) timed.emplace(*timer, phase("rh_traverse"));
         const std::uint32_t zero = 0;   // the children's count, which rh_cull.comp's groups add to
         info_.upload(&zero, sizeof zero, (slot + 1) * sizeof zero);
+        const Program& cull = chain ? cull_children_ : cull_;
         in_->rays.bind(gpu::kWavefrontBindingRaysIn);
         nodes_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
         spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
         objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
         if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
-        counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
         info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
-        offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 4);   // each work group's first output place
-        set_source(cull_, src);
-        cull_.set("rh_group_first", unsigned(in_->first + group_.first));
-        cull_.set("rh_branching", b);
-        cull_.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
-        cull_.set("rh_box_test", options.box_test ? 1u : 0u);
-        cull_.set("rh_children_slot", slot + 1);
-        dispatch_chunk(cull_, step, count, on_gpu);
+        if (chain) {   // the children, in one window
+            step_buffers(step + 1, 0);
+            pairs_[step + 1].reserve(std::size_t(cap) * 8);
+            pairs_[step + 1].bind(gpu::kWavefrontBindingTraversalFirst + 4);
+            order_.bind(gpu::kWavefrontBindingTraversalFirst + 5);   // rh_common.glsl: RH_BINDING_CULL_ORDER
+            cull.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
+        } else {   // the counts and the groups' first places, for rh_expand.comp's windows
+            counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
+            offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 4);
+        }
+        set_source(cull, src);
+        cull.set("rh_group_first", unsigned(in_->first + group_.first));
+        cull.set("rh_branching", b);
+        cull.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
+        cull.set("rh_box_test", options.box_test ? 1u : 0u);
+        cull.set("rh_children_slot", slot + 1);
+        dispatch_chunk(cull, step, count, on_gpu);
         if (!chain) {   // the chunk's length (when only the GPU knows it) and its children's, in one read-back
             const std::vector<std::uint32_t> lengths = read_info(int(slot), 2);
             if (on_gpu) count = lengths[0];
@@ -123,9 +136,8 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         }
         ++chunks;
     }
-    const std::uint32_t cap = std::uint32_t(capacity_);
     if (chain) {   // one window of at most `cap` pairs, whatever the GPU found
-        expand(step, src, count, on_gpu, 0, cap);
+        ++windows;
         {
             std::optional<gpu::GpuTimer::Scope> timed;
             if (timer) timed.emplace(*timer, phase("rh_traverse"));

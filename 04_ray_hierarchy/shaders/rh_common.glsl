@@ -23,6 +23,7 @@
 #define RH_BINDING_GROUP_OFFSETS RH_BINDING_PAIRS_OUT         // test pass: writes RH_BINDING_OFFSETS' buffer
 #define RH_BINDING_HITS RH_BINDING_PAIRS_OUT                  // leaf and fold passes: the hit list
 #define RH_BINDING_STATE RH_BINDING_COUNTS                    // leaf and fold passes: per-ray closest-hit state
+#define RH_BINDING_CULL_ORDER RH_BINDING_COUNTS               // test pass writing children: as RH_BINDING_ORDER
 
 // Relative padding of every bound and test (section "Conservative in floats" of README.md): 1e-4 is about 800 float
 // ulps, far above the few ulps each formula loses and the error of GPU sin/cos/atan (~1e-6 absolute).

@@ -7,12 +7,14 @@
 // the exact test. Every split takes one side one level down, so the pairs of one step are equally deep and the (ray,
 // triangle) pairs are all in the last step, which only rh_leaf.comp sees.
 //
-// Writes for each pair how many pairs it expands to (0 when rejected). A pair's place inside its work group of 64 comes
-// from the shared-memory atomic that sums the group, and the group's first place among the chunk's children from one
-// atomic on the children's count (rh_info[rh_children_slot]), which thereby ends as their number: no scan, no pass
-// between this one and rh_expand.comp (until 2026-12-05 a scan of the groups' sums placed them, up to three more
-// dispatches per step). Both atomics hand out places in whatever order the threads and groups run: the order of the
-// pairs changes nothing the traversal computes, the hits, the occlusion or the counts.
+// Writes for each pair how many pairs it expands to (0 when rejected), for rh_expand.comp; or, compiled with
+// RH_CULL_WRITES_CHILDREN for a step whose children all fit one window, writes those children itself
+// (rh_children.glsl). A pair's place inside its work group of 64 comes from the shared-memory atomic that sums the
+// group, and the group's first place among the chunk's children from one atomic on the children's count
+// (rh_info[rh_children_slot]), which thereby ends as their number: no scan, no pass between this one and
+// rh_expand.comp (until 2026-12-05 a scan of the groups' sums placed them, up to three more dispatches per step).
+// Both atomics hand out places in whatever order the threads and groups run: the order of the pairs changes nothing
+// the traversal computes, the hits, the occlusion or the counts.
 // rh_counts[i] packs the count (bits 0-12, at most 4096), that place (bits 13-30, at most 63 x 4096) and the side
 // split (bit 31: the object side).
 #include "rh_common.glsl"
@@ -24,8 +26,17 @@ layout(local_size_x = 64) in;
 layout(std430, binding = RH_BINDING_NODES) readonly buffer Nodes { RhNode rh_nodes[]; };
 layout(std430, binding = RH_BINDING_SPHERES) readonly buffer Spheres { vec4 rh_spheres[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject rh_objects[]; };
+#ifdef RH_CULL_WRITES_CHILDREN
+// The step's children all fit one window (gpu_ray_traversal.cpp, test_chunk: `chain`): each survivor writes its
+// children itself once its group's place is known, and the step needs no rh_expand.comp.
+layout(std430, binding = RH_BINDING_PAIRS_OUT) writeonly buffer PairsOut { uvec2 rh_pairs_out[]; };
+layout(std430, binding = RH_BINDING_CULL_ORDER) readonly buffer Order { uint rh_order[]; };
+uniform uint rh_identity_order;  // as rh_expand.comp's
+shared uint rh_group_base;
+#else
 layout(std430, binding = RH_BINDING_COUNTS) writeonly buffer Counts { uint rh_counts[]; };
 layout(std430, binding = RH_BINDING_GROUP_OFFSETS) writeonly buffer GroupOffsets { uint rh_group_offsets[]; };
+#endif
 
 uniform uint rh_level_first[32];   // ray level l >= 1: its node 0 in rh_nodes
 uniform uint rh_level_nodes[32];   // nodes on ray level l (level 0: the group's rays)
@@ -34,6 +45,10 @@ uniform uint rh_branching;
 uniform uint rh_split_larger;      // 1 (--objects tree): split the larger side; 0: the object side first
 uniform uint rh_box_test;          // 1 (--box-test on): a single ray against an object node's box too
 uniform uint rh_children_slot;     // RH_INFO_STEP_COUNT + step + 1: the children's count (0 before the pass)
+
+#ifdef RH_CULL_WRITES_CHILDREN
+#include "rh_children.glsl"
+#endif
 
 shared uint rh_group_sum;
 shared uint rh_level_in[32], rh_level_out[32];
@@ -52,11 +67,12 @@ void main() {
     }
     barrier();
     const uint i = rt_global_index();
+    uvec2 p = uvec2(0u);
+    uint n = 0u, place = 0u, split_objects = 0u;
     if (i < rh_chunk_count()) {
-        const uvec2 p = rh_pair(i);
+        p = rh_pair(i);
         const uint level = rh_ray_level(p.x), index = rh_ray_index(p.x);
         const bool triangle = rh_is_triangle(p.y);
-        uint n = 0u, split_objects = 0u;
         if (!(level == 0u && triangle)) {   // (ray, triangle) pairs are rh_leaf.comp's (only the last step has them)
             const vec4 s = triangle ? rh_spheres[p.y & ~RH_TRIANGLE_FLAG] : rh_objects[p.y].sphere;
             bool may_hit, split_rays = false;
@@ -85,13 +101,19 @@ void main() {
                 }
             }
         }
-        uint place = 0u;
         if (n > 0u) place = atomicAdd(rh_group_sum, n);
+#ifndef RH_CULL_WRITES_CHILDREN
         rh_counts[i] = n | place << 13 | split_objects << 31;
+#endif
     }
     barrier();
     if (lane == 0u) {
-        rh_group_offsets[rt_group_index()] = atomicAdd(rh_info[rh_children_slot], rh_group_sum);
+        const uint group_first = atomicAdd(rh_info[rh_children_slot], rh_group_sum);
+#ifdef RH_CULL_WRITES_CHILDREN
+        rh_group_base = group_first;
+#else
+        rh_group_offsets[rt_group_index()] = group_first;
+#endif
         rh_add64(RH_INFO_OBJECT_IN, rh_object_in);
         rh_add64(RH_INFO_OBJECT_OUT, rh_object_out);
     }
@@ -99,4 +121,9 @@ void main() {
         rh_add64(RH_INFO_LEVEL_IN + 2u * lane, rh_level_in[lane]);
         rh_add64(RH_INFO_LEVEL_OUT + 2u * lane, rh_level_out[lane]);
     }
+#ifdef RH_CULL_WRITES_CHILDREN
+    barrier();
+    const uint base = rh_group_base + place;
+    if (n > 0u) rh_write_children(p, split_objects == 1u, base, base, base + n, 0u);
+#endif
 }

@@ -1,8 +1,7 @@
 #version 450 core
 // Expansion of the surviving pairs of a chunk: pair i writes its n pairs to outputs [o, o + n), where o is its work
 // group's first place among the chunk's children plus its place in the group (n and both places from rh_cull.comp). The
-// side rh_cull.comp chose is split: the ray node's children with the same object side, or the object node's children
-// (object nodes, or a leaf's triangles) with the same ray side. Only outputs inside the window [rh_window_first, +
+// side rh_cull.comp chose is split (rh_children.glsl). Only outputs inside the window [rh_window_first, +
 // rh_window_count) are written: windows keep each output within one buffer, so any number of survivors is expanded (in
 // several windows) and no pair is ever dropped. A thread writes at most B (16) children, or one mesh object's triangles
 // (at most 4096: the loop limit of docs/gpu.md).
@@ -21,6 +20,8 @@ uniform uint rh_window_first, rh_window_count;
 uniform uint rh_branching;
 uniform uint rh_identity_order;  // 1: level-1 objects hold triangles first + k (meshes), 0: rh_order[first + k]
 
+#include "rh_children.glsl"
+
 void main() {
     const uint i = rt_global_index();
     if (i >= rh_chunk_count()) return;
@@ -30,18 +31,5 @@ void main() {
     const uint base = rh_group_offsets[rt_group_index()] + ((word >> 13) & 0x3ffffu);
     const uint first = max(base, rh_window_first), last = min(base + n, rh_window_first + rh_window_count);
     if (first >= last) return;
-    const uvec2 p = rh_pair(i);
-    if ((word >> 31) == 1u) {
-        const RhObject o = rh_objects[p.y];
-        for (uint g = first; g < last; ++g) {
-            const uint child = o.first + (g - base);
-            const uint y = o.level > 1u ? child
-                                        : RH_TRIANGLE_FLAG | (rh_identity_order == 1u ? child : rh_order[child]);
-            rh_pairs_out[g - rh_window_first] = uvec2(p.x, y);
-        }
-    } else {
-        const uint level = rh_ray_level(p.x) - 1u, index = rh_ray_index(p.x) * rh_branching;
-        for (uint g = first; g < last; ++g)
-            rh_pairs_out[g - rh_window_first] = uvec2(rh_ray_side(level, index + (g - base)), p.y);
-    }
+    rh_write_children(rh_pair(i), (word >> 31) == 1u, base, first, last, rh_window_first);
 }
