@@ -90,6 +90,7 @@ void RadixSort::pass(const Buffer& keys_in, const Buffer& values_in, Buffer& key
     // may load it ahead of the branch.
     const Buffer& count_binding = gpu_count ? *gpu_count : counts_;
     scatter_.set("total", unsigned(n));
+    const bool scan_here = tiles <= kScatterScanTiles && window >= n;   // radix_scatter.comp sums the counts itself
     // 1. Count the digits of every tile, window by window.
     bind_window(counts_, kBindingSortCounts, 0, kRadix * tiles);
     count_binding.bind_range(kBindingSortCount, 0, 4);
@@ -101,9 +102,12 @@ void RadixSort::pass(const Buffer& keys_in, const Buffer& values_in, Buffer& key
         dispatch_tiles(count_, tiles_for(count));
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    // 2. Where each (digit, tile) starts in the output.
-    scan_.exclusive(counts_, counts_, kRadix * tiles);
-    count_binding.bind_range(kBindingSortCount, 0, 4);   // the scan used that point
+    // 2. Where each (digit, tile) starts in the output (with few tiles, in the scatter).
+    scatter_.set("scan_here", scan_here ? 1u : 0u);
+    if (!scan_here) {
+        scan_.exclusive(counts_, counts_, kRadix * tiles);
+        count_binding.bind_range(kBindingSortCount, 0, 4);   // the scan used that point
+    }
     // 3. Scatter every input window into every output window (one of each when the arrays fit one block).
     bind_window(counts_, kBindingSortCounts, 0, kRadix * tiles);
     for (std::size_t begin = 0; begin < n; begin += window) {

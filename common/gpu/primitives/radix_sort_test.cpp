@@ -60,8 +60,10 @@ void expect_sorted_like_std(RadixSort& sort, const Pairs& in, unsigned key_bits,
     EXPECT_EQ(got.values, expected.values) << what << ", n = " << in.keys.size() << ", key_bits = " << key_bits;
 }
 
-// Lengths around the work group (256) and tile (kSortTile = 4096) sizes, and many tiles with a partial last one.
-const std::size_t kLengths[] = {2, 3, 255, 256, 257, 4095, 4096, 4097, 100003};
+// Lengths around the work group (256) and tile (kSortTile = 4096) sizes, many tiles with a partial last one, and
+// around the most tiles whose counts the scatter scans itself (kScatterScanTiles; above it, the scan's pass).
+const std::size_t kLengths[] = {2, 3, 255, 256, 257, 4095, 4096, 4097, 100003, kScatterScanTiles * kSortTile,
+                                kScatterScanTiles * kSortTile + 1};
 
 TEST(GpuRadixSort, RandomKeysMatchStdStableSort) {
     test_context();

@@ -5,6 +5,7 @@
 #define SORT_THREADS 256u
 #define SORT_ITEMS 16u                               // consecutive elements per thread
 #define SORT_TILE (SORT_THREADS * SORT_ITEMS)        // elements per work group
+#define SCATTER_SCAN_TILES 64u   // up to this many tiles, radix_scatter.comp scans the counts it needs itself
 
 // Per dispatch: n elements of this window (bound from its first element), the window's first tile among all
 // `tiles`, and the digit: (key >> shift) & mask.

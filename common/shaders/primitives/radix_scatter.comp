@@ -2,6 +2,8 @@
 // Radix sort, step 3 of a pass: every key (and its value) goes to its place. `offsets` is the exclusive scan of the
 // counts (radix_count.comp): offsets[count_index(d, tile)] is where the tile's first key with digit d goes. Within
 // the tile, a key goes after the tile's earlier keys of the same digit, so equal digits keep their order (stable).
+// With few tiles (scan_here = 1, at most SCATTER_SCAN_TILES) the buffer holds the counts themselves, and each work
+// group sums the few it needs (tile_start): the scan's dispatch is saved, the places are the same.
 //
 // Thread t owns the SORT_ITEMS consecutive keys from tile * SORT_TILE + t * SORT_ITEMS. rank[d][t] counts thread
 // t's keys of digit d; one exclusive scan of the whole rank table (digit-major) turns it into the number of the
@@ -28,11 +30,22 @@ uniform uint out_begin;
 uniform uint out_end;
 uniform uint total;                       // all elements (every window): the end of the last digit's last tile
                                           // (the GPU's count instead, with count_from_buffer)
+uniform uint scan_here;                   // 1: `offsets` holds the counts, unscanned (tiles <= SCATTER_SCAN_TILES)
 
 shared uint rank[RADIX * SORT_THREADS];   // rank[d * SORT_THREADS + t]
 shared uint thread_total[SORT_THREADS];
 shared uint digit_base[RADIX];            // offsets[...] minus the tile-local start of the digit
+shared uint digit_total[RADIX];           // scan_here: keys of each digit in all tiles
 shared bool lands_in_window;
+
+// scan_here: where the tile's first key of digit d goes (what the scan would have written at count_index(d, tile)):
+// the keys of all smaller digits, plus this digit's keys in the tiles before. Needs digit_total.
+uint tile_start(uint d, uint tile) {
+    uint start = 0u;
+    for (uint smaller = 0u; smaller < d; ++smaller) start += digit_total[smaller];
+    for (uint before = 0u; before < tile; ++before) start += offsets[count_index(d, before)];
+    return start;
+}
 
 void main() {
     const uint tile = rt_group_index();
@@ -42,10 +55,24 @@ void main() {
     const uint end_of_all = count_from_buffer != 0u ? min(sort_count, total) : total;
 
     if (t == 0u) lands_in_window = false;
+    if (scan_here == 1u && t < RADIX) {
+        uint sum = 0u;
+        for (uint k = 0u; k < tiles; ++k) sum += offsets[count_index(t, k)];
+        digit_total[t] = sum;
+    }
     barrier();
+    uint start = 0u;   // thread t < RADIX: where the tile's first key of digit t goes
     if (t < RADIX) {
         const uint i = count_index(t, tile);
-        const uint begin = offsets[i], end = i + 1u < RADIX * tiles ? offsets[i + 1u] : end_of_all;
+        uint begin, end;
+        if (scan_here == 1u) {
+            begin = tile_start(t, tile);
+            end = begin + offsets[i];
+        } else {
+            begin = offsets[i];
+            end = i + 1u < RADIX * tiles ? offsets[i + 1u] : end_of_all;
+        }
+        start = begin;
         if (begin < end && begin < out_end && end > out_begin) lands_in_window = true;
     }
     barrier();
@@ -75,7 +102,7 @@ void main() {
         running += c;
     }
     barrier();
-    if (t < RADIX) digit_base[t] = offsets[count_index(t, tile)] - rank[t * SORT_THREADS];
+    if (t < RADIX) digit_base[t] = start - rank[t * SORT_THREADS];
     barrier();
 
     // Only thread t touches column t of rank from here on.
