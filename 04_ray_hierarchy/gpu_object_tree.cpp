@@ -102,6 +102,12 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     objects_ = object_level_count_.back();
 }
 
+GpuRayHierarchy::LeafSpheres GpuRayHierarchy::leaf_spheres() const {
+    if (options.objects != ObjectMode::triangles && !object_level_count_.empty())
+        return {&objects_buf_, object_level_count_[0], std::uint32_t(sizeof(ObjectNode) / 16)};
+    return {&spheres_buf_, std::uint32_t(triangles_), 1};
+}
+
 ObjectTree GpuRayHierarchy::download_tree() const {
     ObjectTree tree;
     tree.level_first = object_level_first_;

@@ -69,6 +69,15 @@ public:
     std::size_t object_nodes() const { return object_nodes_; }
     // The tree as the GPU built it (order, nodes, levels), for the tests: the same as build_object_tree's.
     ObjectTree download_tree() const;
+    // The bounding spheres of the finest objects the ray nodes are culled against, as prepare() left them: the
+    // tree's leaves (clusters) with --objects tree, the mesh objects with meshes (ObjectNode: a sphere every 4
+    // vec4s), the triangles with triangles (a sphere per vec4). Stage 05's --sort auto takes their mean diameter as
+    // the width beyond which a ray node's tightness no longer matters.
+    struct LeafSpheres {
+        const gpu::Buffer* buffer = nullptr;
+        std::uint32_t count = 0, stride = 1;   // spheres, and vec4s from one to the next
+    };
+    LeafSpheres leaf_spheres() const;
     // Entries per buffer (pairs, hits, counts) for the current storage limit.
     std::size_t capacity() const { return capacity_; }
     // Programs compiled for the current variant.

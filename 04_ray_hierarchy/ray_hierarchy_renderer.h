@@ -32,6 +32,8 @@ protected:
     void add_stage_stats(FrameResult& result) override;   // hierarchy_stats.h
     // One batch of the pipeline through the hierarchy (stage 05 overrides it to sort the batch's rays first).
     virtual void trace_batch(const gpu::BatchTraceInputs& in, bool shadow);
+    // The hierarchy of this frame (after build()), for stage 05.
+    const GpuRayHierarchy& hierarchy() const { return *hierarchy_; }
 
 private:
 

@@ -19,8 +19,26 @@ std::uint32_t order_fixed_width(const RhNode& node, float longest, float diagona
     return std::uint32_t(units);
 }
 
+std::uint32_t order_radius_units(float radius, float diagonal) {
+    const float units = radius / diagonal * kOrderWidthUnits;
+    if (!(units >= 0.0f)) return 0;   // an empty sphere (radius < 0) or NaN
+    return units < kOrderMaxWidth * kOrderWidthUnits ? std::uint32_t(units) : kOrderNoCap;
+}
+
+std::uint32_t order_width_cap(std::uint64_t radius_units_sum, std::uint32_t leaves) {
+    if (leaves == 0) return kOrderNoCap;
+    const double mean_diameter = 2.0 * double(radius_units_sum) / double(leaves);   // as on the GPU, in double
+    return std::uint32_t(std::min(mean_diameter, double(kOrderNoCap)));
+}
+
+std::uint32_t order_width_cap(const std::vector<glm::vec4>& leaf_spheres, float diagonal) {
+    std::uint64_t sum = 0;
+    for (const glm::vec4& s : leaf_spheres) sum += order_radius_units(s.w, diagonal);
+    return order_width_cap(sum, std::uint32_t(leaf_spheres.size()));
+}
+
 std::uint64_t order_cost(const std::vector<OrderRay>& rays, const std::vector<std::uint32_t>& order, int branching,
-                         float diagonal) {
+                         float diagonal, std::uint32_t cap) {
     const std::size_t b = std::size_t(branching);
     std::uint64_t sum = 0;
     for (std::size_t first = 0; first < rays.size(); first += b) {
@@ -32,7 +50,7 @@ std::uint64_t order_cost(const std::vector<OrderRay>& rays, const std::vector<st
             kids[k] = rh_leaf(r.origin, r.direction);
             longest = std::max(longest, r.tmax * glm::length(r.direction));
         }
-        sum += order_fixed_width(rh_union(kids, count), longest, diagonal);
+        sum += std::min(order_fixed_width(rh_union(kids, count), longest, diagonal), cap);
     }
     return sum;
 }
@@ -53,6 +71,8 @@ constexpr unsigned kBindingOrder = gpu::kBindingWavefrontTraversalFirst + 0;
 constexpr unsigned kBindingCost = gpu::kBindingWavefrontTraversalFirst + 1;
 constexpr unsigned kBindingTally = gpu::kBindingWavefrontTraversalFirst + 2;
 constexpr unsigned kBindingOrderFine = gpu::kBindingWavefrontTraversalFirst + 3;
+constexpr unsigned kBindingLeaves = gpu::kBindingWavefrontTraversalFirst + 4;
+constexpr std::size_t kCostWords = 8;   // three 64-bit width sums, then the leaves' radii
 constexpr std::size_t kTallySize = 6;   // OC_TALLY_SIZE
 
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
@@ -77,6 +97,7 @@ void GpuOrderChoice::sum(const gpu::Buffer* order, unsigned slot, std::size_t fi
     cost_.set("oc_diagonal", diagonal);
     cost_.set("oc_sorted", order ? 1u : 0u);
     cost_.set("oc_slot", slot);
+    cost_.set("oc_mode", 0u);
     cost_.dispatch_threads((count + std::size_t(branching) - 1) / std::size_t(branching));   // a thread per node
 }
 
@@ -85,11 +106,18 @@ void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer
                             float diagonal, int kind) {
     compile(defines);
     if (count == 0) return;
+    if (!costs_) {
+        costs_ = gpu::Buffer(kCostWords * 4);
+        costs_.clear_u32(0);
+    }
     const std::uint32_t zero[6] = {};
-    if (!costs_) costs_ = gpu::Buffer(sizeof zero);
-    costs_.upload(zero, sizeof zero);
-    rays.bind(gpu::kBindingWavefrontRaysIn);
+    costs_.upload(zero, sizeof zero);   // the three width sums; words 6, 7 are the frame's
     costs_.bind(kBindingCost);
+    (leaves_ ? *leaves_ : costs_).bind(kBindingLeaves);
+    cost_.set("oc_leaf_count", leaves_ ? leaf_count_ : 0u);
+    cost_.set("oc_leaf_stride", leaf_stride_);
+    if (!leaves_measured_) measure_leaves(diagonal);
+    rays.bind(gpu::kBindingWavefrontRaysIn);
     order.bind_range(kBindingOrder, 0, count * 4);   // also read (not used) by the queue's sum
     sum(nullptr, 0, first, count, branching, diagonal);
     sum(&order, 1, first, count, branching, diagonal);
@@ -107,10 +135,36 @@ void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer
     gpu::check_gl("05_ray_sorting: order choice");
 }
 
+// The leaves' radii in width units of the batch's diagonal (the frame's), summed into costs_ words 6 and 7
+// (order_cost.comp, oc_mode 1).
+void GpuOrderChoice::measure_leaves(float diagonal) {
+    const std::uint32_t zero[2] = {};
+    costs_.upload(zero, sizeof zero, 6 * 4);
+    cost_.set("oc_mode", 1u);
+    cost_.set("oc_slot", 3u);
+    cost_.set("oc_diagonal", diagonal);
+    cost_.dispatch_threads(leaf_count_);
+    barrier();
+    leaves_measured_ = true;
+}
+
+void GpuOrderChoice::set_leaves(const gpu::Buffer& spheres, std::uint32_t count, std::uint32_t stride) {
+    leaves_ = count > 0 ? &spheres : nullptr;
+    leaf_count_ = count;
+    leaf_stride_ = std::max<std::uint32_t>(stride, 1);
+    leaves_measured_ = leaves_ == nullptr;
+}
+
 std::array<std::uint64_t, 3> GpuOrderChoice::last_costs() const {
     std::uint32_t v[6] = {};
     if (costs_) costs_.download(v, sizeof v);
     return {u64(v), u64(v + 2), u64(v + 4)};
+}
+
+std::uint32_t GpuOrderChoice::width_cap() const {
+    std::uint32_t v[kCostWords] = {};
+    if (costs_) costs_.download(v, sizeof v);
+    return order_width_cap(u64(v + 6), leaves_ ? leaf_count_ : 0u);
 }
 
 std::array<GpuOrderChoice::Tally, 2> GpuOrderChoice::tally() const {

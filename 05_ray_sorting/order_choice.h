@@ -37,9 +37,19 @@ struct OrderRay {
     float tmax = 0.0f;
 };
 
-// The summed width of the level-1 nodes over rays[order[0..n)] taken B at a time (order empty: queue order).
+// The cap of every node's width (order_choice.glsl: oc_width_cap): the mean diameter of the leaves the ray nodes meet
+// last (the object tree's clusters, or the triangles), in width units, from the sum of their radii in width units
+// (each rounded down, empty or NaN spheres 0, at most kOrderMaxWidth); no leaves: no cap (kOrderMaxWidth). A ray node
+// wider than the leaf it meets is split into its rays there, so a wider one costs no more below.
+std::uint32_t order_radius_units(float radius, float diagonal);
+std::uint32_t order_width_cap(std::uint64_t radius_units_sum, std::uint32_t leaves);
+std::uint32_t order_width_cap(const std::vector<glm::vec4>& leaf_spheres, float diagonal);
+constexpr auto kOrderNoCap = std::uint32_t(kOrderMaxWidth * kOrderWidthUnits);
+
+// The summed width of the level-1 nodes over rays[order[0..n)] taken B at a time (order empty: queue order), each
+// node's width at most `cap`.
 std::uint64_t order_cost(const std::vector<OrderRay>& rays, const std::vector<std::uint32_t>& order, int branching,
-                         float diagonal);
+                         float diagonal, std::uint32_t cap = kOrderNoCap);
 
 // The sorted order is kept only when tighter by more than 1/32 of the queue's width (OC_MARGIN_DENOMINATOR): the
 // width is a proxy of the cost, and a sort that gains less is not worth its passes (builtin:diffuse's shadow batch:
@@ -64,6 +74,12 @@ public:
     // its rays through wavefront.glsl).
     void choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first, std::size_t count,
                 gpu::Buffer& order, const gpu::Buffer* fine_order, int branching, float diagonal, int kind);
+    // Per frame, before its batches: the bounding spheres the ray nodes meet last (`count` of them, `stride` vec4s
+    // apart; GpuRayHierarchy::leaf_spheres), whose mean diameter caps every node's width (order_width_cap). Measured
+    // by the next choose(), once. Until the first call, and with count 0, no cap.
+    void set_leaves(const gpu::Buffer& spheres, std::uint32_t count, std::uint32_t stride);
+    // The cap the last choose() used, in width units (a read-back: for the tests and the stats).
+    std::uint32_t width_cap() const;
     // The last batch's sums: queue, sorted, fine (0 without one). A read-back: for the tests.
     std::array<std::uint64_t, 3> last_costs() const;
     // Per batch kind since reset_tally(): batches and rays that kept a sorted order, and batches that kept the fine
@@ -78,9 +94,13 @@ private:
     void compile(const gpu::ShaderDefines& defines);
     void sum(const gpu::Buffer* order, unsigned slot, std::size_t first, std::size_t count, int branching,
              float diagonal) const;
+    void measure_leaves(float diagonal);
     gpu::ShaderDefines defines_;   // the variant cost_ and choice_ were compiled for
     gpu::Program cost_, choice_;
     gpu::Buffer costs_, tally_;
+    const gpu::Buffer* leaves_ = nullptr;   // set_leaves(): the spheres, their count and stride
+    std::uint32_t leaf_count_ = 0, leaf_stride_ = 1;
+    bool leaves_measured_ = true;           // costs_ words 6, 7 hold their radii's sum
 };
 
 }  // namespace rt

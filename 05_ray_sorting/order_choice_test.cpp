@@ -6,6 +6,8 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <string>
+#include <tuple>
 
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/pipeline/wavefront.h"
@@ -214,6 +216,74 @@ TEST(OrderChoice, WidthsOfEmptyAllDirectionAndLongNodes) {
     EXPECT_EQ(order_fixed_width(narrow, 1e30f, 2.0f), order_fixed_width(narrow, reach, 2.0f)) << "cut to the reach";
     EXPECT_LT(order_fixed_width(narrow, 0.5f * reach, 2.0f), order_fixed_width(narrow, reach, 2.0f))
         << "a short ray is narrower";
+}
+
+// The cap: the leaves' mean diameter in width units, each radius rounded down; empty and NaN spheres count 0, a
+// huge one at most kOrderMaxWidth; no leaves, no cap.
+TEST(OrderChoice, TheWidthCapIsTheLeavesMeanDiameter) {
+    EXPECT_EQ(order_width_cap(std::vector<glm::vec4>{}, 1.0f), kOrderNoCap);
+    EXPECT_EQ(order_width_cap(0, 0), kOrderNoCap);
+    // Radii of 1/64 and 3/64 of a diagonal of 2 (64 and 192 units): mean diameter 256.
+    EXPECT_EQ(order_width_cap({{0, 0, 0, 1.0f / 32}, {5, 0, 0, 3.0f / 32}}, 2.0f), 256u);
+    EXPECT_EQ(order_radius_units(-1.0f, 1.0f), 0u);
+    EXPECT_EQ(order_radius_units(std::numeric_limits<float>::quiet_NaN(), 1.0f), 0u);
+    EXPECT_EQ(order_radius_units(1e30f, 1.0f), kOrderNoCap);
+    EXPECT_EQ(order_width_cap({{0, 0, 0, -1.0f}, {0, 0, 0, 0.25f}}, 1.0f), 1024u) << "an empty leaf counts 0";
+    EXPECT_EQ(order_width_cap({{0, 0, 0, 1e30f}}, 1.0f), kOrderNoCap);
+}
+
+// Leaf spheres of `radius` (the scene's clusters or triangles), one every `stride` vec4s as in the hierarchy's buffers.
+std::vector<glm::vec4> leaf_buffer(std::size_t count, std::uint32_t stride, float radius,
+                                   std::vector<glm::vec4>* spheres) {
+    std::vector<glm::vec4> data(count * stride, glm::vec4(7.0f));   // the other words of a node: never read
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.5f, 1.5f);
+    for (std::size_t i = 0; i < count; ++i) {
+        data[i * stride] = glm::vec4(float(i), 0.0f, 0.0f, radius * u(rng));
+        spheres->push_back(data[i * stride]);
+    }
+    return data;
+}
+
+// With leaves set, the GPU measures their cap once and caps every node's width: its cap and sums are the CPU twin's
+// (up to one unit per leaf radius and per node for the GPU's division and sin), and the choice follows. Interleaved
+// clusters: the queue's nodes are wide, the sorted ones tight; against leaves as large as the clusters' gap the sort
+// is kept, against tiny leaves (every node wider than them: each is split into its rays at once) the widths are all
+// capped alike and the queue's order stays.
+TEST(GpuOrderChoice, NodesCountOnlyUpToTheLeavesDiameter) {
+    gpu::test_context();
+    const Case c = interleaved_clusters();
+    const std::size_t n = c.sorted.size();
+    const std::vector<gpu::WavefrontRay> batch(c.rays.begin() + std::ptrdiff_t(c.first),
+                                               c.rays.begin() + std::ptrdiff_t(c.first + n));
+    std::vector<std::uint32_t> local(n);
+    for (std::size_t i = 0; i < n; ++i) local[i] = c.sorted[i] - std::uint32_t(c.first);
+    const float diagonal = 3.0f;
+    for (auto [radius, stride, keep] : {std::tuple{1.0f, 4u, true}, {1e-3f, 1u, false}, {1e-3f, 4u, false}}) {
+        std::vector<glm::vec4> spheres;
+        const Buffer leaves = Buffer::from(leaf_buffer(1000, stride, radius, &spheres));
+        GpuOrderChoice choice;
+        choice.set_leaves(leaves, 1000, stride);
+        const Buffer rays = Buffer::from(c.rays);
+        Buffer order = Buffer::from(c.sorted);
+        choice.choose({}, rays, c.first, n, order, nullptr, 4, diagonal, 1);
+        const std::uint32_t cap = order_width_cap(spheres, diagonal);
+        const std::string what = "leaf radius " + std::to_string(radius) + ", stride " + std::to_string(stride);
+        EXPECT_LE(std::max(choice.width_cap(), cap) - std::min(choice.width_cap(), cap), 2u) << what;
+        const auto [gpu_queue, gpu_sorted, unused] = choice.last_costs();
+        const std::uint64_t queue = order_cost(order_rays(batch), {}, 4, diagonal, cap);
+        const std::uint64_t sorted = order_cost(order_rays(batch), local, 4, diagonal, cap);
+        const std::uint64_t nodes = (n + 3) / 4;
+        EXPECT_LE(std::max(gpu_queue, queue) - std::min(gpu_queue, queue), 2 * nodes) << what;
+        EXPECT_LE(std::max(gpu_sorted, sorted) - std::min(gpu_sorted, sorted), 2 * nodes) << what;
+        EXPECT_EQ(keep_sorted_order(gpu_queue, gpu_sorted), keep) << what << ": queue " << gpu_queue << ", sorted "
+                                                                  << gpu_sorted << ", cap " << cap;
+        EXPECT_EQ(choice.tally()[1].batches, keep ? 1u : 0u) << what;
+        // Measured once: a second batch of the frame reads the same cap.
+        Buffer again = Buffer::from(c.sorted);
+        choice.choose({}, rays, c.first, n, again, nullptr, 4, diagonal, 1);
+        EXPECT_EQ(choice.last_costs()[0], gpu_queue) << what;
+    }
 }
 
 }  // namespace

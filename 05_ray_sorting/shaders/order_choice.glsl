@@ -3,11 +3,13 @@
 
 // Bindings: stage 05's own buffers, from the traversal's first point (stage 04 binds its own before each pass).
 #define OC_BINDING_ORDER (WF_BINDING_TRAVERSAL_FIRST + 0)        // uint[count]: queue index of the i-th sorted ray
-#define OC_BINDING_COST (WF_BINDING_TRAVERSAL_FIRST + 1)         // uint[6]: 64-bit width sums: queue, sorted, fine
+#define OC_BINDING_COST (WF_BINDING_TRAVERSAL_FIRST + 1)         // uint[8]: 64-bit width sums: queue, sorted, fine;
+                                                                 // then the leaves' radii (once per frame)
 #define OC_BINDING_TALLY (WF_BINDING_TRAVERSAL_FIRST + 2)        // uint[2 OC_TALLY_SIZE]: per batch kind (trace,
                                                                  // shadow) 64-bit counts: batches and rays that kept
                                                                  // a sort, batches that kept the fine one
 #define OC_BINDING_ORDER_FINE (WF_BINDING_TRAVERSAL_FIRST + 3)   // uint[count]: the order by the fine direction cell
+#define OC_BINDING_LEAVES (WF_BINDING_TRAVERSAL_FIRST + 4)       // vec4[]: the spheres the ray nodes meet last
 #define OC_TALLY_SIZE 6u
 
 // Width units per diagonal: a level-1 node's width in 1/4096 of the scene's diagonal, rounded down, at most
@@ -33,4 +35,21 @@ uint oc_fixed_width(RhNode node, float longest, float diagonal) {
     precise float units = width / diagonal * OC_UNITS;
     if (!(units < OC_MAX_WIDTH * OC_UNITS)) return uint(OC_MAX_WIDTH * OC_UNITS);
     return uint(units);
+}
+
+// The cap of a node's width: the mean diameter of the leaves the ray nodes meet last (the object tree's clusters, or
+// the triangles), from the sum of their radii in width units. A ray node wider than the leaf it meets is split into
+// its rays there (rh_split_rays), so how much wider it is changes nothing below; without the cap a few very wide nodes
+// (rays from both sides of a silhouette) outweigh the rest, and the sort they favour can cost more (05's README,
+// "Choosing per batch": builtin:spheres:450's shadow rays, +3.7% leaf pairs and node tests with the uncapped width).
+// No leaves: no cap.
+uint oc_radius_units(float radius, float diagonal) {
+    precise float units = radius / diagonal * OC_UNITS;
+    if (!(units >= 0.0)) return 0u;   // an empty sphere (radius < 0) or NaN
+    return units < OC_MAX_WIDTH * OC_UNITS ? uint(units) : uint(OC_MAX_WIDTH * OC_UNITS);
+}
+uint oc_width_cap(uint sum_lo, uint sum_hi, uint leaves) {
+    if (leaves == 0u) return uint(OC_MAX_WIDTH * OC_UNITS);
+    const double mean_diameter = 2.0lf * (double(sum_hi) * 4294967296.0lf + double(sum_lo)) / double(leaves);
+    return uint(min(mean_diameter, double(OC_MAX_WIDTH * OC_UNITS)));
 }

@@ -5,6 +5,8 @@
 // + L sin(spread), the width rh_split_rays compares with an object node, at L = the longest ray of the node (tmax |d|)
 // cut to an eighth of the scene's diagonal (order_choice.glsl: OC_REACH). Level 1 carries the traversal's cost: its
 // width decides how many (ray, triangle) pairs reach the leaves.
+// Each width is capped by the leaves' mean diameter (order_choice.glsl: oc_width_cap), which oc_mode 1 measures once
+// per frame: the same pass sums the leaves' radii (thread g: leaf g) into oc_cost[6], [7].
 // Widths are summed in fixed point (1/4096 of the diagonal per unit) as a 64-bit counter, first per work group in
 // shared memory, then one atomic add per group, so the sum (and the choice) does not depend on the order threads run.
 #include "04_ray_hierarchy/shaders/rh_common.glsl"
@@ -14,6 +16,7 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = OC_BINDING_ORDER) readonly buffer Order { uint oc_order[]; };
 layout(std430, binding = OC_BINDING_COST) buffer Cost { uint oc_cost[]; };
+layout(std430, binding = OC_BINDING_LEAVES) readonly buffer Leaves { vec4 oc_leaves[]; };
 
 uniform uint oc_count;       // rays of the batch
 uniform uint oc_first;       // the batch's first ray in wf_rays_in (queue order)
@@ -21,6 +24,9 @@ uniform uint oc_branching;   // B: rays per level-1 node
 uniform float oc_diagonal;   // the scene box's diagonal (> 0)
 uniform uint oc_sorted;      // 0: queue order (oc_order unread), 1: the order in oc_order
 uniform uint oc_slot;        // the sum goes to oc_cost[2 slot], [2 slot + 1] (order_choice.glsl)
+uniform uint oc_mode;        // 0: the widths of an order's level-1 nodes; 1: the leaves' radii (slot 3)
+uniform uint oc_leaf_count;  // the leaves' count (0: none, no cap)
+uniform uint oc_leaf_stride; // vec4s from one leaf's sphere to the next
 
 shared uint oc_lo[64], oc_hi[64];
 
@@ -41,8 +47,12 @@ uint oc_width(uint g) {
 
 void main() {
     const uint g = rt_global_index(), t = gl_LocalInvocationIndex;
-    const uint nodes = (oc_count + oc_branching - 1u) / oc_branching;
-    oc_lo[t] = g < nodes ? oc_width(g) : 0u;
+    if (oc_mode == 1u) {
+        oc_lo[t] = g < oc_leaf_count ? oc_radius_units(oc_leaves[g * oc_leaf_stride].w, oc_diagonal) : 0u;
+    } else {
+        const uint nodes = (oc_count + oc_branching - 1u) / oc_branching;
+        oc_lo[t] = g < nodes ? min(oc_width(g), oc_width_cap(oc_cost[6], oc_cost[7], oc_leaf_count)) : 0u;
+    }
     oc_hi[t] = 0u;
     barrier();
     // Tree reduction of 64-bit sums held as (lo, hi) pairs.
