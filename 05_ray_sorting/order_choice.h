@@ -6,7 +6,8 @@
 // from the camera a sort can only match it, and its cell boundaries sometimes split neighbours the queue kept
 // together (README.md, "Measured with the object tree": sorting alone lost on 6 of 11 scenes by up to 3% of the
 // leaf pairs). The cost proxy is the level-1 nodes' beam width where they meet the scene: level 1 (B rays) is the
-// side every (ray, object) pair splits down to, so its width decides how many pairs reach the exact test.
+// side every (ray, object) pair splits down to, so its width decides how many pairs reach the exact test, up to the
+// width of the objects it meets (the cap, order_width_cap below).
 #pragma once
 
 #include <array>
@@ -37,10 +38,11 @@ struct OrderRay {
     float tmax = 0.0f;
 };
 
-// The cap of every node's width (order_choice.glsl: oc_width_cap): the mean diameter of the leaves the ray nodes meet
-// last (the object tree's clusters, or the triangles), in width units, from the sum of their radii in width units
-// (each rounded down, empty or NaN spheres 0, at most kOrderMaxWidth); no leaves: no cap (kOrderMaxWidth). A ray node
-// wider than the leaf it meets is split into its rays there, so a wider one costs no more below.
+// The cap of every node's width (order_choice.glsl: oc_width_cap): the mean diameter of the finest objects the ray
+// nodes are culled against (the object tree's clusters, mesh objects or triangles), in width units, from the sum of
+// their radii in width units (each rounded down, empty or NaN spheres 0, at most kOrderMaxWidth); no leaves: no cap
+// (kOrderMaxWidth). A ray node wider than the leaf it meets is split into its rays there, so a wider one costs no more
+// below.
 std::uint32_t order_radius_units(float radius, float diagonal);
 std::uint32_t order_width_cap(std::uint64_t radius_units_sum, std::uint32_t leaves);
 std::uint32_t order_width_cap(const std::vector<glm::vec4>& leaf_spheres, float diagonal);
@@ -78,7 +80,7 @@ public:
     // apart; GpuRayHierarchy::leaf_spheres), whose mean diameter caps every node's width (order_width_cap). Measured
     // by the next choose(), once. Until the first call, and with count 0, no cap.
     void set_leaves(const gpu::Buffer& spheres, std::uint32_t count, std::uint32_t stride);
-    // The cap the last choose() used, in width units (a read-back: for the tests and the stats).
+    // The cap the last choose() used, in width units (a read-back: for the tests).
     std::uint32_t width_cap() const;
     // The last batch's sums: queue, sorted, fine (0 without one). A read-back: for the tests.
     std::array<std::uint64_t, 3> last_costs() const;
