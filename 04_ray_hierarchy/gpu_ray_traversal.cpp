@@ -18,7 +18,8 @@ using gpu::Program;
 using namespace rh_detail;
 }  // namespace
 
-// The buffers of one step of the traversal, for `pairs` pairs tested there (grown as needed, never shrunk).
+// The buffers of one step of the traversal, with rh_cull.comp's counts and group places for `pairs` pairs tested
+// there (only a step cut into windows for rh_expand.comp needs them: 0 otherwise). Grown as needed, never shrunk.
 void GpuRayHierarchy::step_buffers(int step, std::size_t pairs) {
     if (int(pairs_.size()) <= step) {
         pairs_.resize(step + 1);
@@ -80,7 +81,7 @@ void GpuRayHierarchy::traverse(int top) {
 // read back (one sync), to cut it into windows for rh_expand.comp.
 void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t count, bool on_gpu) {
     if (step > kMaxSteps) throw std::logic_error("04_ray_hierarchy: more traversal steps than rh_info.glsl holds");
-    step_buffers(step, count);
+    step_buffers(step, 0);
     const std::uint32_t b = std::uint32_t(options.branching);
     const std::uint32_t slot = kInfoStepCount + std::uint32_t(step);
     std::uint32_t total = 0;
@@ -118,6 +119,7 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
             order_.bind(gpu::kWavefrontBindingTraversalFirst + 5);   // rh_common.glsl: RH_BINDING_CULL_ORDER
             cull.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
         } else {   // the counts and the groups' first places, for rh_expand.comp's windows
+            step_buffers(step, count);
             counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
             offsets_[step].bind(gpu::kWavefrontBindingTraversalFirst + 4);
         }

@@ -59,8 +59,10 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
     sorter_->reset_tally();
     const float diagonal = glm::length(scene.bounds.hi - scene.bounds.lo);
     diagonal_ = std::isfinite(diagonal) && diagonal > 0.0f ? diagonal : 1.0f;
-    const GpuRayHierarchy::LeafSpheres leaves = hierarchy().leaf_spheres();   // the width cap (order_choice.h)
-    if (sort_options.mode == SortMode::automatic) choice_.set_leaves(*leaves.buffer, leaves.count, leaves.stride);
+    if (sort_options.mode == SortMode::automatic) {   // the width cap (order_choice.h)
+        const GpuRayHierarchy::LeafSpheres leaves = hierarchy().leaf_spheres();
+        choice_.set_leaves(*leaves.buffer, leaves.count, leaves.stride);
+    }
     const unsigned lights = unsigned(scene.lights.size());
     layouts_[0] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, sort_options.direction_bits,
                                   lights, KeyOrder::direction_first);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <numeric>
 #include <random>
+#include <string>
 
 #include "common/gpu/testing/gpu_test_context.h"
 #include "radix_sort.h"
@@ -129,30 +130,37 @@ TEST(GpuRadixSort, WindowsSmallerThanTheArrayGiveTheSameOrder) {
 
 // With the count on the GPU (n only a bound), the first `count` elements come out as std::stable_sort orders them,
 // whatever the elements after them hold: counts of 0, 1, inside the first tile, on tile and window edges, and n.
-// The keys after the count are 0: had they taken part, they would have come first.
+// The keys after the count are 0: had they taken part, they would have come first. Both ways of placing the keys:
+// windows of two tiles (the scan's pass), and one window of 5 tiles (the scatter sums the counts itself).
 TEST(GpuRadixSort, CountOnTheGpuSortsOnlyThatPrefix) {
     test_context();
     RadixSort sort;
-    sort.set_window_for_testing(2 * kSortTile);
     const std::size_t n = 5 * kSortTile + 17;
     const Pairs all = with_index_values(random_keys(n, 11));
-    for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(300), kSortTile, 2 * kSortTile + 1,
-                              4 * kSortTile - 1, n}) {
-        for (unsigned key_bits : {32u, 7u}) {
-            Pairs in = all;
-            for (std::size_t i = count; i < n; ++i) in.keys[i] = 0u;   // would come first if sorted
-            Buffer keys = Buffer::from(in.keys), values = Buffer::from(in.values);
-            const Buffer gpu_count = Buffer::from(std::vector<std::uint32_t>{std::uint32_t(count)});
-            sort.sort(keys, values, n, gpu_count, key_bits);
-            const Pairs prefix{{in.keys.begin(), in.keys.begin() + std::ptrdiff_t(count)},
-                               {in.values.begin(), in.values.begin() + std::ptrdiff_t(count)}};
-            const Pairs expected = cpu_stable_sort(prefix, key_bits);
-            std::vector<std::uint32_t> got_keys = keys.download<std::uint32_t>(n);
-            std::vector<std::uint32_t> got_values = values.download<std::uint32_t>(n);
-            got_keys.resize(count);
-            got_values.resize(count);
-            EXPECT_EQ(got_keys, expected.keys) << "count " << count << " of " << n << ", key_bits " << key_bits;
-            EXPECT_EQ(got_values, expected.values) << "count " << count << " of " << n << ", key_bits " << key_bits;
+    for (std::size_t window : {2 * kSortTile, std::size_t(0)}) {
+        sort.set_window_for_testing(window);
+        const std::string how = window ? "windows of 2 tiles" : "one window";
+        for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(300), kSortTile, 2 * kSortTile + 1,
+                                  4 * kSortTile - 1, n}) {
+            for (unsigned key_bits : {32u, 7u}) {
+                Pairs in = all;
+                for (std::size_t i = count; i < n; ++i) in.keys[i] = 0u;   // would come first if sorted
+                Buffer keys = Buffer::from(in.keys), values = Buffer::from(in.values);
+                const Buffer gpu_count = Buffer::from(std::vector<std::uint32_t>{std::uint32_t(count)});
+                sort.sort(keys, values, n, gpu_count, key_bits);
+                const Pairs prefix{{in.keys.begin(), in.keys.begin() + std::ptrdiff_t(count)},
+                                   {in.values.begin(), in.values.begin() + std::ptrdiff_t(count)}};
+                const Pairs expected = cpu_stable_sort(prefix, key_bits);
+                std::vector<std::uint32_t> got_keys = keys.download<std::uint32_t>(n);
+                std::vector<std::uint32_t> got_values = values.download<std::uint32_t>(n);
+                got_keys.resize(count);
+                got_values.resize(count);
+                const std::string what =
+                    how + ", count " + std::to_string(count) + " of " + std::to_string(n) + ", key_bits " +
+                    std::to_string(key_bits);
+                EXPECT_EQ(got_keys, expected.keys) << what;
+                EXPECT_EQ(got_values, expected.values) << what;
+            }
         }
     }
     Buffer keys = Buffer::from(all.keys), values = Buffer::from(all.values);
