@@ -12,7 +12,8 @@
 namespace rt::gpu {
 namespace {
 
-const std::size_t kSizes[] = {1, 255, 256, 257, 511, 512, 513, 100000, 262145};   // 262145: three levels
+// 7, 8, 9: one thread's run of scan_block.comp and the next; 511-513: a block's; 262145: three levels.
+const std::size_t kSizes[] = {1, 7, 8, 9, 255, 256, 257, 511, 512, 513, 100000, 262145};
 
 std::vector<std::uint32_t> random_values(std::size_t n, std::uint32_t max, unsigned seed) {
     std::mt19937 rng(seed);

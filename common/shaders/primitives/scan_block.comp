@@ -1,8 +1,12 @@
 #version 450 core
-// Work-efficient exclusive prefix sum of one block of SCAN_BLOCK uints per work group (Blelloch 1990; GPU Gems 3,
-// ch. 39): up-sweep (reduce) and down-sweep in shared memory, padded against bank conflicts. Writes the block's
-// total to scan_sums[block_base + block]; the host scans those sums recursively and adds them back (scan_add.comp).
-// The arrays are bound from the window's first element (n elements); block_base is its first block.
+// Exclusive (or inclusive) prefix sum of one block of SCAN_BLOCK uints per work group, by raking (Merrill & Grimshaw
+// 2009; CUB's BlockScan): each of SCAN_RAKE_THREADS threads sums a run of SCAN_ITEMS consecutive elements in
+// registers, one thread scans the runs' totals in shared memory, and each thread writes its run's prefixes from its
+// run's start. Three barriers in all (the tree scan of Blelloch 1990 needs two per level of the block, 18 for 512),
+// and the serial parts are what a SIMD core does best (on llvmpipe, a vector of lanes each walking its own run).
+// Writes the block's total to scan_sums[block_base + block]; the host scans those sums recursively and adds them
+// back (scan_add.comp). The arrays are bound from the window's first element (n elements); block_base is its first
+// block.
 // Defines: SCAN_FLAGS: scan (in != 0 ? 1 : 0) instead of in (stream compaction's flag scan).
 //          SCAN_HEADS: scan (in != 0 ? i : 0), the index of each head flag (with SCAN_MAX: the segmented scan).
 //          SCAN_MAX: the operator is max instead of + (scan_common.glsl: SCAN_OP).
@@ -11,7 +15,12 @@
 #include "common/shaders/compute.glsl"
 #include "scan_common.glsl"
 
-layout(local_size_x = SCAN_THREADS) in;
+#define SCAN_RAKE_THREADS 64u
+#define SCAN_ITEMS (SCAN_BLOCK / SCAN_RAKE_THREADS)   // 8 consecutive elements per thread
+// One padding word after every run, so the threads' runs start in different banks (stride SCAN_ITEMS + 1).
+#define SCAN_RUN_PAD(i) ((i) + (i) / SCAN_ITEMS)
+
+layout(local_size_x = SCAN_RAKE_THREADS) in;
 
 layout(std430, binding = RT_BINDING_SCAN_IN) readonly buffer ScanIn { uint scan_in[]; };
 layout(std430, binding = RT_BINDING_SCAN_OUT) writeonly buffer ScanOut { uint scan_out[]; };
@@ -20,7 +29,8 @@ layout(std430, binding = RT_BINDING_SCAN_SUMS) writeonly buffer ScanSums { uint 
 uniform uint n;
 uniform uint block_base;
 
-shared uint temp[SCAN_BLOCK + (SCAN_BLOCK >> SCAN_LOG_BANKS)];
+shared uint tile[SCAN_BLOCK + SCAN_BLOCK / SCAN_ITEMS];
+shared uint run_start[SCAN_RAKE_THREADS];
 
 uint load(uint i) {
     if (i >= n) return 0u;
@@ -37,49 +47,45 @@ void main() {
     const uint block = rt_group_index();
     const uint t = gl_LocalInvocationID.x;
     const uint base = block * SCAN_BLOCK;
-    const uint ai = t, bi = t + SCAN_THREADS;
-    const uint a_in = load(base + ai), b_in = load(base + bi);
-    temp[SCAN_PAD(ai)] = a_in;
-    temp[SCAN_PAD(bi)] = b_in;
-
-    // Up-sweep: build partial sums in place up the tree.
-    uint offset = 1u;
-    for (uint d = SCAN_BLOCK >> 1; d > 0u; d >>= 1) {
-        memoryBarrierShared();
-        barrier();
-        if (t < d) {
-            const uint i = offset * (2u * t + 1u) - 1u;
-            const uint j = offset * (2u * t + 2u) - 1u;
-            temp[SCAN_PAD(j)] = SCAN_OP(temp[SCAN_PAD(j)], temp[SCAN_PAD(i)]);
-        }
-        offset <<= 1;
+    // Loads and stores go through shared memory so that neighbouring threads touch neighbouring words (coalesced).
+    for (uint k = 0u; k < SCAN_ITEMS; ++k) {
+        const uint i = t + k * SCAN_RAKE_THREADS;
+        tile[SCAN_RUN_PAD(i)] = load(base + i);
     }
-    memoryBarrierShared();
     barrier();
+    // The thread's run [t SCAN_ITEMS, (t + 1) SCAN_ITEMS): its total.
+    uint run[SCAN_ITEMS];
+    uint total = 0u;   // the identity of + and of max over uints
+    for (uint k = 0u; k < SCAN_ITEMS; ++k) {
+        run[k] = tile[SCAN_RUN_PAD(t * SCAN_ITEMS + k)];
+        total = SCAN_OP(total, run[k]);
+    }
+    run_start[t] = total;
+    barrier();
+    // The runs' totals, scanned by one thread (64 additions): each run's start, and the block's total.
     if (t == 0u) {
-        scan_sums[block_base + block] = temp[SCAN_PAD(SCAN_BLOCK - 1u)];
-        temp[SCAN_PAD(SCAN_BLOCK - 1u)] = 0u;
-    }
-    // Down-sweep: traverse back down, swapping and adding.
-    for (uint d = 1u; d < SCAN_BLOCK; d <<= 1) {
-        offset >>= 1;
-        memoryBarrierShared();
-        barrier();
-        if (t < d) {
-            const uint i = SCAN_PAD(offset * (2u * t + 1u) - 1u);
-            const uint j = SCAN_PAD(offset * (2u * t + 2u) - 1u);
-            const uint x = temp[i];
-            temp[i] = temp[j];
-            temp[j] = SCAN_OP(temp[j], x);
+        uint sum = 0u;
+        for (uint r = 0u; r < SCAN_RAKE_THREADS; ++r) {
+            const uint x = run_start[r];
+            run_start[r] = sum;
+            sum = SCAN_OP(sum, x);
         }
+        scan_sums[block_base + block] = sum;
     }
-    memoryBarrierShared();
     barrier();
+    uint sum = run_start[t];
+    for (uint k = 0u; k < SCAN_ITEMS; ++k) {
 #ifdef SCAN_INCLUSIVE
-    if (base + ai < n) scan_out[base + ai] = SCAN_OP(temp[SCAN_PAD(ai)], a_in);
-    if (base + bi < n) scan_out[base + bi] = SCAN_OP(temp[SCAN_PAD(bi)], b_in);
+        sum = SCAN_OP(sum, run[k]);
+        tile[SCAN_RUN_PAD(t * SCAN_ITEMS + k)] = sum;
 #else
-    if (base + ai < n) scan_out[base + ai] = temp[SCAN_PAD(ai)];
-    if (base + bi < n) scan_out[base + bi] = temp[SCAN_PAD(bi)];
+        tile[SCAN_RUN_PAD(t * SCAN_ITEMS + k)] = sum;
+        sum = SCAN_OP(sum, run[k]);
 #endif
+    }
+    barrier();
+    for (uint k = 0u; k < SCAN_ITEMS; ++k) {
+        const uint i = t + k * SCAN_RAKE_THREADS;
+        if (base + i < n) scan_out[base + i] = tile[SCAN_RUN_PAD(i)];
+    }
 }
