@@ -29,15 +29,14 @@ std::vector<ObjectRange> object_ranges(const std::vector<std::uint32_t>& materia
 
 std::vector<std::string> GpuRayHierarchy::program_names() {
     std::vector<std::string> names;
-    for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_heads.comp", "rh_groups.comp", "rh_build.comp",
-                          "rh_cull.comp", "rh_expand.comp", "rh_leaf.comp", "rh_fold.comp", "rh_args.comp",
-                          "rh_tally.comp"})
+    for (const char* p : {"rh_spheres.comp", "ot_build.comp", "rh_build.comp", "rh_cull.comp", "rh_expand.comp",
+                          "rh_leaf.comp", "rh_fold.comp", "rh_args.comp", "rh_tally.comp"})
         names.push_back(std::string("04_ray_hierarchy/shaders/") + p);
     return names;
 }
 
 GpuRayHierarchy::GpuRayHierarchy()
-    : info_(kInfoWords * sizeof(std::uint32_t)), group_count_(sizeof(std::uint32_t)),
+    : info_(kInfoWords * sizeof(std::uint32_t)),
       tally_(std::size_t(kRayKinds) * kTallyWords * sizeof(std::uint32_t)),
       args_((kMaxSteps + 1) * 3 * sizeof(std::uint32_t)) {
     reset_stats();
@@ -87,8 +86,6 @@ void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", d);
     tree_ = Program::compute("04_ray_hierarchy/shaders/ot_build.comp", d);
     build_ = Program::compute("04_ray_hierarchy/shaders/rh_build.comp", d);
-    heads_ = Program::compute("04_ray_hierarchy/shaders/rh_heads.comp", d);
-    groups_ = Program::compute("04_ray_hierarchy/shaders/rh_groups.comp", d);
     cull_ = Program::compute("04_ray_hierarchy/shaders/rh_cull.comp", d);
     gpu::ShaderDefines writes_children = d;
     writes_children.emplace("RH_CULL_WRITES_CHILDREN", "1");
@@ -183,41 +180,19 @@ void GpuRayHierarchy::tally_group() {
     barrier();
 }
 
+// The groups are the batch's runs (BatchTraceInputs::runs): the pipeline queues each kind of ray, and each light's
+// shadow rays, in a block of its own and knows how many went to each, so nothing is read back to find them.
 std::vector<GpuRayHierarchy::Group> GpuRayHierarchy::find_groups(const gpu::BatchTraceInputs& in) {
-    const std::uint32_t n = std::uint32_t(in.count);
-    head_flags_.reserve(std::size_t(n) * 4);
-    group_heads_.reserve(std::size_t(n) * 4);
-    in.rays.bind(gpu::kWavefrontBindingRaysIn);
-    head_flags_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
-    heads_.set("wf_input_first", unsigned(in.first));
-    heads_.set("wf_input_count", n);
-    heads_.dispatch_threads(n);
-    barrier();
-    compaction_.compact_indices(head_flags_, n, group_heads_, group_count_);
-    // One list [count, (first ray, kind) per group] (rh_groups.comp), read back at once.
-    group_list_.reserve((1 + 2 * std::size_t(n)) * 4);
-    group_heads_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
-    group_count_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
-    group_list_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
-    groups_.set("wf_input_first", unsigned(in.first));
-    groups_.set("wf_input_count", n);
-    groups_.dispatch_threads(n);
-    barrier();
-    std::vector<std::uint32_t> list = group_list_.download<std::uint32_t>(1 + 2 * std::min(n, kGroupsAtOnce));
-    ++syncs;
-    const std::uint32_t count = list[0];
-    if (count > kGroupsAtOnce) {   // more groups than the first read holds: the rest in a second one
-        list = group_list_.download<std::uint32_t>(1 + 2 * std::size_t(count));
-        ++syncs;
-    }
     std::vector<Group> groups;
-    for (std::uint32_t i = 0; i < count; ++i) {
-        Group g;
-        g.first = list[1 + 2 * i];
-        g.count = (i + 1 < count ? list[1 + 2 * (i + 1)] : n) - g.first;
-        g.kind = std::min<std::uint32_t>(list[2 + 2 * i], std::uint32_t(kRayKinds - 1));
-        groups.push_back(g);
+    std::size_t next = 0;
+    for (const gpu::RayRun& run : in.runs) {
+        if (run.first != next || run.count == 0 || run.first + run.count > in.count)
+            throw std::logic_error("04_ray_hierarchy: the batch's runs do not cover its rays in order");
+        groups.push_back({std::uint32_t(run.first), std::uint32_t(run.count),
+                          std::min<std::uint32_t>(std::uint32_t(run.kind), std::uint32_t(kRayKinds - 1))});
+        next = run.first + run.count;
     }
+    if (next != in.count) throw std::logic_error("04_ray_hierarchy: the batch's runs do not cover its rays in order");
     return groups;
 }
 

@@ -112,13 +112,13 @@ private:
     std::string phase(const char* name) const;
 
     gpu::ShaderDefines compiled_for_;   // the wavefront defines the programs were compiled with
-    gpu::Program spheres_, tree_, build_, heads_, groups_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_,
-        args_pass_, tally_pass_;
+    gpu::Program spheres_, tree_, build_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_,
+        tally_pass_;
     gpu::Program cull_children_;   // rh_cull.comp writing the children itself (a step whose children fit one window)
-    gpu::Compaction compaction_;
+    gpu::Scan scan_;   // the hit list's prune (prune_hits)
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
-    gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, group_heads_, group_count_,
-        head_flags_, group_list_, state_, hits_, hits_tmp_, prune_flags_, prune_offsets_;
+    gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, state_, hits_, hits_tmp_, prune_flags_,
+        prune_offsets_;
     gpu::Buffer tally_;   // per ray kind, the GPU's sums of the traversal's counts (rh_tally.comp)
     gpu::Buffer args_;   // indirect dispatch arguments per step (3 uints each), written by rh_args.comp
     std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per step of the depth-first traversal (0 = the top)

@@ -1,6 +1,6 @@
 // Stage 04's GPU hierarchy, shared by its two source files (gpu_ray_hierarchy.cpp: groups, build, stats;
 // gpu_ray_traversal.cpp: the pair traversal, the leaves and the fold): the limits and the shaders' buffer layouts
-// (rh_info.glsl, rh_tally.comp, rh_groups.comp) as the C++ side reads them. Not for use outside the stage.
+// (rh_info.glsl, rh_tally.comp) as the C++ side reads them. Not for use outside the stage.
 #pragma once
 
 #include <cstddef>
@@ -26,8 +26,6 @@ inline constexpr int kMaxSteps = 63;   // rh_info.glsl: RH_INFO_STEP_COUNT slots
 inline constexpr std::uint32_t kTallyWords = 144, kTallyGroupPairs = 69, kTallySphere = 138, kTallyFold = 140;
 // rh_fold.comp: select + step rounds of the closest-hit fold dispatched between two looks at its "more to fold" flag.
 inline constexpr int kFoldRoundsPerRead = 2;
-// rh_groups.comp's list [count, (first ray, kind) per group]: the groups read back at once (more take a second read).
-inline constexpr std::uint32_t kGroupsAtOnce = 64;
 
 // Between passes: storage writes visible to the next pass, to buffer updates and to indirect dispatch arguments.
 inline void barrier() {

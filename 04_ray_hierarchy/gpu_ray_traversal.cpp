@@ -279,7 +279,7 @@ void GpuRayHierarchy::prune_hits() {
     fold_.set("rh_count", used);
     fold_.dispatch_threads(used);
     barrier();
-    compaction_.scan().exclusive_flags(prune_flags_, prune_offsets_, used, &info_, 4);   // the kept count: the length
+    scan_.exclusive_flags(prune_flags_, prune_offsets_, used, &info_, 4);   // the kept count: the length
     hits_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
     state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
     info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);

@@ -108,7 +108,9 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     stats.rays += n;
 
     sorted_results_.reserve(n * stride * 4);
-    RayHierarchyRenderer::trace_batch({sorted_rays_, 0, n, sorted_results_, in.tests_per_pixel, in.wavefront}, shadow);
+    // The same runs: the key's group field (ray_keys.h) sorts the groups in the queue's order, each its whole self.
+    RayHierarchyRenderer::trace_batch({sorted_rays_, 0, n, sorted_results_, in.tests_per_pixel, in.wavefront, in.runs},
+                                      shadow);
 
     auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
     scatter_.set("rs_count", unsigned(n));

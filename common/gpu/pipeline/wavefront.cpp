@@ -43,9 +43,12 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     if (settings.max_depth <= 0) effects.reflections = effects.refractions = false;
     shadows_ = effects.shadows && lights_ > 0;
     effects.shadows = shadows_;
-    // BLEND coverage's transparency rays go where refraction rays do (shade.comp).
+    // BLEND coverage's transparency rays are secondary rays too, in a block of slots of their own (shade.comp).
     secondary_ = effects.reflections || effects.refractions || (effects.blend && settings.max_depth > 0);
+    transparency_slots_ = secondary_ && effects.blend;
     ShaderDefines defines = effect_defines(effects);
+    // shade.comp writes the secondary rays' slots only when they exist (BLEND shades with max_depth 0 too).
+    if (secondary_) defines.insert_or_assign("WF_SECONDARY_RAYS", std::string("1"));
     defines.insert_or_assign("RT_INTERSECT_METHOD", std::string(settings.intersect == IntersectMethod::Watertight
                                                                     ? "RT_INTERSECT_WATERTIGHT"
                                                                     : "RT_INTERSECT_MOLLER"));
@@ -212,7 +215,7 @@ void Wavefront::shade_sample(const Program& primary_pass, const Program* deferre
         // slots and flags; they are traced once the rasterized hits and all their descendants are done.
         const std::size_t deferred = defer ? gather_deferred_rays(*deferred_rays, slots) : 0;
         if (hits > 0) process_hits(hits, 0);
-        if (deferred > 0) run_rays(queue(0), deferred, 0);
+        if (deferred > 0) run_rays(queue(0), {{0, deferred, RayKind::Primary, 0}}, 0);
     });
 }
 
@@ -262,22 +265,23 @@ void Wavefront::trace_camera_sample(glm::vec2 offset) {
         timed.end();
         Buffer& rays = queue(0);
         const std::size_t count = compact(ray_slots_, slots, sizeof(WavefrontRay) / 4, rays);
-        run_rays(rays, count, 0);
+        if (count > 0) run_rays(rays, {{0, count, RayKind::Primary, 0}}, 0);
     });
 }
 
 // Shades `hits` hits (in hits_) of depth `depth`: their shadow rays are traced right away, their reflection and
 // refraction rays go to queue(depth + 1) and are traced (with all their descendants) before this returns.
-// Output slots of one shade run: [reflections | refractions] (secondary_) then one block of `hits` slots per light.
-// When the lights' blocks do not all fit the storage limit, the lights are shaded in several runs; the last one
-// also adds the local terms and spawns the reflection and refraction rays.
+// Output slots of one shade run: [reflections | refractions (| transparency)] (secondary_) then one block of `hits`
+// slots per light. When the lights' blocks do not all fit the storage limit, the lights are shaded in several runs;
+// the last one also adds the local terms and spawns the reflection and refraction rays.
 void Wavefront::process_hits(std::size_t hits, int depth) {
-    const std::size_t secondary_slots = secondary_ ? 2 * hits : 0;
+    const std::vector<SlotBlock> secondary_kinds = secondary_blocks();
+    const std::size_t secondary_slots = secondary_kinds.size() * hits;
     Buffer& out = queue(depth + 1);
-    std::uint32_t secondary = 0;
+    std::vector<RayRun> secondary;
     if (!shadows_) {
         run_shade(hits, 0, lights_, true, 0);   // unshadowed lights are summed in the shade pass
-        if (secondary_slots > 0) secondary = compact(ray_slots_, secondary_slots, sizeof(WavefrontRay) / 4, out);
+        if (secondary_slots > 0) secondary = compact_blocks(hits, secondary_kinds, out);
     } else {
         const std::size_t slots_fit = storage_limit_ / sizeof(WavefrontRay);
         const unsigned per_run = unsigned(std::clamp<std::size_t>((slots_fit - secondary_slots) / hits, 1, lights_));
@@ -286,21 +290,43 @@ void Wavefront::process_hits(std::size_t hits, int depth) {
             const bool last = first + count == lights_;
             const std::size_t base = last ? secondary_slots : 0;
             run_shade(hits, first, count, last, base);
-            std::uint32_t before = 0;
-            const std::uint32_t total =
-                compact(ray_slots_, base + count * hits, sizeof(WavefrontRay) / 4, out, base, &before);
-            if (total > before) run_shadow(out, before, total - before);
-            if (last) secondary = before;
+            std::vector<SlotBlock> blocks = last ? secondary_kinds : std::vector<SlotBlock>{};
+            for (unsigned l = first; l < first + count; ++l) blocks.push_back({RayKind::Shadow, l});
+            std::vector<RayRun> shadow;   // the runs after the secondary ones, from the first shadow ray on
+            std::size_t shadow_first = 0;
+            for (const RayRun& run : compact_blocks(hits, blocks, out)) {
+                if (run.kind != RayKind::Shadow) {
+                    secondary.push_back(run);
+                    shadow_first = run.first + run.count;
+                } else {
+                    shadow.push_back(run);
+                }
+            }
+            std::size_t shadow_count = 0;
+            for (RayRun& run : shadow) {
+                run.first -= shadow_first;
+                shadow_count += run.count;
+            }
+            if (shadow_count > 0) run_shadow(out, shadow_first, shadow_count, std::move(shadow));
         }
     }
-    if (secondary > 0) run_rays(out, secondary, depth + 1);
+    if (!secondary.empty()) run_rays(out, secondary, depth + 1);
+}
+
+// The blocks of secondary slots a shade pass writes (shade.comp): reflections at i, refractions at n + i and, with
+// BLEND, transparency rays at 2n + i.
+std::vector<Wavefront::SlotBlock> Wavefront::secondary_blocks() const {
+    if (!secondary_) return {};
+    std::vector<SlotBlock> blocks = {{RayKind::Reflection, 0}, {RayKind::Refraction, 0}};
+    if (transparency_slots_) blocks.push_back({RayKind::Transparency, 0});
+    return blocks;
 }
 
 void Wavefront::run_shade(std::size_t hits, unsigned light_first, unsigned light_count, bool local,
                           std::size_t shadow_base) {
     const PassTimer timed(timer, "shade");
     const std::size_t all_slots = std::max(shadow_base + (shadows_ ? std::size_t(light_count) * hits : 0),
-                                           secondary_ && local ? 2 * hits : std::size_t(0));
+                                           local ? secondary_blocks().size() * hits : std::size_t(0));
     ray_slots_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(WavefrontRay));
     flags_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(std::uint32_t));
     hits_.bind(kBindingWavefrontHits);
@@ -318,12 +344,18 @@ void Wavefront::run_shade(std::size_t hits, unsigned light_first, unsigned light
     check_gl("wavefront: shade pass");
 }
 
-// Traces `count` rays of depth `depth` from `rays`, in batches: the hits of each batch are shaded (and their
-// descendants traced) before the next batch.
-void Wavefront::run_rays(Buffer& rays, std::size_t count, int depth) {
+// Traces the rays of `runs` (queue order, from the queue's first ray) of depth `depth` from `rays`, in batches: the
+// hits of each batch are shaded (and their descendants traced) before the next batch.
+void Wavefront::run_rays(Buffer& rays, const std::vector<RayRun>& runs, int depth) {
+    const std::size_t count = runs.empty() ? 0 : runs.back().first + runs.back().count;
     for (std::size_t first = 0; first < count; first += batch_) {
         const std::size_t n = std::min(batch_, count - first);
-        run_trace(rays, first, n);
+        std::vector<RayRun> batch_runs;   // the runs cut to the batch, from its first ray
+        for (const RayRun& run : runs) {
+            const std::size_t begin = std::max(run.first, first), end = std::min(run.first + run.count, first + n);
+            if (begin < end) batch_runs.push_back({begin - first, end - begin, run.kind, run.light});
+        }
+        run_trace(rays, first, n, std::move(batch_runs));
         hit_slots_.reserve(n * sizeof(WavefrontHit));
         flags_.reserve(n * sizeof(std::uint32_t));
         hit_slots_.bind(kBindingWavefrontHits);
@@ -334,11 +366,12 @@ void Wavefront::run_rays(Buffer& rays, std::size_t count, int depth) {
     }
 }
 
-void Wavefront::run_trace(Buffer& rays, std::size_t first, std::size_t count) {
+void Wavefront::run_trace(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs) {
     const PassTimer timed(timer, "trace");
     results_.reserve(count * sizeof(WavefrontTraceResult));
     if (traversal_.trace_batch) {
-        traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
+        traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this,
+                                std::move(runs)});
     } else {
         rays.bind(kBindingWavefrontRaysIn);
         results_.bind(kBindingWavefrontResults);
@@ -354,11 +387,12 @@ void Wavefront::run_trace(Buffer& rays, std::size_t first, std::size_t count) {
     if (settings_.record_hits) record_rays(rays, first, count, false);
 }
 
-void Wavefront::run_shadow(Buffer& rays, std::size_t first, std::size_t count) {
+void Wavefront::run_shadow(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs) {
     const PassTimer timed(timer, "shadow");
     results_.reserve(count * sizeof(std::uint32_t));
     if (traversal_.shadow_batch) {
-        traversal_.shadow_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this});
+        traversal_.shadow_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this,
+                                 std::move(runs)});
     } else {
         rays.bind(kBindingWavefrontRaysIn);
         results_.bind(kBindingWavefrontResults);
@@ -422,6 +456,18 @@ Image Wavefront::finish_frame(RayCounters& counters) {
     counters.rays[int(RayKind::Primary)] = std::uint64_t(pixels_) * std::uint64_t(samples_);
     check_gl("wavefront: finish frame");
     return image;
+}
+
+std::vector<RayRun> ray_runs(const std::vector<WavefrontRay>& rays, std::size_t first, std::size_t count) {
+    std::vector<RayRun> runs;
+    for (std::size_t i = first; i < first + count && i < rays.size(); ++i) {
+        const RayKind kind = RayKind(rays[i].depth_kind >> 16);
+        const std::uint32_t light = kind == RayKind::Shadow ? rays[i].light : 0u;
+        if (runs.empty() || runs.back().kind != kind || runs.back().light != light)
+            runs.push_back({i - first, 0, kind, light});
+        ++runs.back().count;
+    }
+    return runs;
 }
 
 }  // namespace rt::gpu

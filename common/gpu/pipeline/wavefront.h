@@ -83,6 +83,20 @@ static_assert(sizeof(WavefrontTraceResult) == 16);
 
 class Wavefront;
 
+// Consecutive rays of a batch of one kind (and, for shadow rays, one light). Every kind a shade pass spawns, and every
+// light's shadow rays, has its own block of output slots (shade.comp), so the queues hold them in runs, and the
+// pipeline knows each run's length from the compaction's read-back of its block boundaries: a stage that builds a
+// structure per run (stage 04's hierarchies) reads nothing back to find them.
+struct RayRun {
+    std::size_t first = 0, count = 0;   // rays [first, first + count) of the batch (0 = its first ray)
+    RayKind kind = RayKind::Primary;
+    std::uint32_t light = 0;            // shadow rays: the light they go to
+};
+
+// The maximal runs of rays[first, first + count) (from `first`): what the pipeline hands a batch traversal for them,
+// worked out from the rays themselves (for callers outside the pipeline: tests).
+std::vector<RayRun> ray_runs(const std::vector<struct WavefrontRay>& rays, std::size_t first, std::size_t count);
+
 // What a batch traversal gets for one pass: trace rays[first, first + count) (WavefrontRay) and write result i for
 // ray first + i: WavefrontTraceResult (trace_batch, closest hit) or a uint, 1 = occluded (shadow_batch, any hit).
 // It must add its ray/triangle tests to RT_COUNTER_INTERSECTION_TESTS (the counters stay bound at
@@ -94,6 +108,7 @@ struct BatchTraceInputs {
     Buffer& results;
     const Buffer* tests_per_pixel = nullptr;   // uint per pixel, only when settings.record_tests_per_pixel
     const Wavefront& wavefront;                // defines(), set_uniforms() for the batch's own programs
+    std::vector<RayRun> runs;                  // the batch's rays as maximal runs, in order, covering [0, count)
 };
 
 // The stage's traversal (see above).
@@ -186,14 +201,21 @@ private:
     void size_batches();
     std::pair<std::size_t, std::size_t> band_pixels(std::size_t band) const;
     template <class F> void for_each_tile_batch(F&& run_batch);
-    std::uint32_t compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out,
-                          std::size_t split = 0, std::uint32_t* before_split = nullptr);
+    std::uint32_t compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out);
+    // A shade run's slots, `blocks` blocks of `hits` each, packed into `out`: the runs of the blocks (empty ones left
+    // out), from one read-back of the scan at every block boundary.
+    struct SlotBlock {
+        RayKind kind;
+        std::uint32_t light;
+    };
+    std::vector<RayRun> compact_blocks(std::size_t hits, const std::vector<SlotBlock>& blocks, Buffer& out);
+    std::vector<SlotBlock> secondary_blocks() const;   // reflection, refraction (and transparency) slots
     Buffer& queue(int depth);
     void process_hits(std::size_t hits, int depth);
     void run_shade(std::size_t hits, unsigned light_first, unsigned light_count, bool local, std::size_t shadow_base);
-    void run_rays(Buffer& rays, std::size_t count, int depth);
-    void run_shadow(Buffer& rays, std::size_t first, std::size_t count);
-    void run_trace(Buffer& rays, std::size_t first, std::size_t count);
+    void run_rays(Buffer& rays, const std::vector<RayRun>& runs, int depth);
+    void run_shadow(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs);
+    void run_trace(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs);
     void run_collect(const Program& collect, Buffer& rays, std::size_t first, std::size_t count);
     void record_primary_slots(std::size_t slots);
     void record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow);
@@ -217,6 +239,7 @@ private:
     int samples_ = 0;
     unsigned lights_ = 0;
     bool shadows_ = false, secondary_ = false;
+    bool transparency_slots_ = false;   // BLEND's transparency rays have their own block (secondary_ only)
     std::size_t storage_limit_ = 0, batch_ = 0;
     std::size_t band_tile_rows_ = 0;   // rows of 8x8 tiles whose radiance sums fit one storage block
     ShaderDefines defines_;

@@ -38,8 +38,8 @@ std::size_t Wavefront::storage_block_limit() const {
 }
 
 // How many hits (or rays) one batch holds: every buffer a batch binds must fit the storage limit. Per hit of a
-// batch: the hit (80 bytes), its hit slot, and its output slots (64 bytes per ray: reflection, refraction and at
-// least one light's shadow ray; more lights are shaded in several runs, see process_hits).
+// batch: the hit (80 bytes), its hit slot, and its output slots (64 bytes per ray: reflection, refraction, with BLEND
+// transparency, and at least one light's shadow ray; more lights are shaded in several runs, see process_hits).
 void Wavefront::size_batches() {
     storage_limit_ = storage_block_limit();
     // Per-pixel sums in bands of rows of tiles (the whole image when it fits); the test counts for the whole image.
@@ -52,7 +52,7 @@ void Wavefront::size_batches() {
                          " bytes of per-pixel storage in one block, more than the storage block limit of " +
                          std::to_string(storage_limit_) + " bytes (the device's, or RT_MAX_SSBO_BYTES)");
     band_tile_rows_ = storage_limit_ / tile_row_bytes;
-    const std::size_t rays_per_hit = std::size_t(secondary_ ? 2 : 0) + (shadows_ ? 1 : 0);
+    const std::size_t rays_per_hit = secondary_blocks().size() + (shadows_ ? 1 : 0);
     const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
     batch_ = storage_limit_ / per_hit;
     if (batch_ < kTilePixels)
@@ -61,23 +61,13 @@ void Wavefront::size_batches() {
 }
 
 // Packs the flagged slots of `slots` (n records of stride_uints) into `out`, keeping their order: an exclusive scan
-// of the flags gives each used slot its place. Returns how many were used; with `split`, also how many of the
-// first `split` slots were (the scan's value at split).
-std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out,
-                                 std::size_t split, std::uint32_t* before_split) {
+// of the flags gives each used slot its place. Returns how many were used (one read-back).
+std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out) {
     offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
     scan_.exclusive_flags(flags_, offsets_, n, &counts_, 0);
-    // The total and, with a split, the scan's value there: one read-back of two words.
-    const bool split_inside = before_split && split < n;
-    if (split_inside) {
-        offsets_.copy_to(counts_, sizeof(std::uint32_t), split * sizeof(std::uint32_t), sizeof(std::uint32_t));
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    }
-    std::uint32_t words[2] = {};
-    counts_.download(words, (split_inside ? 2 : 1) * sizeof(std::uint32_t));
+    std::uint32_t total = 0;
+    counts_.download(&total, sizeof total);
     ++syncs_;
-    const std::uint32_t total = words[0];
-    if (before_split) *before_split = split_inside ? words[1] : total;
     if (total == 0) return 0;
     out.reserve(std::size_t(total) * stride_uints * sizeof(std::uint32_t));
     flags_.bind(kBindingCompactFlags);
@@ -90,6 +80,38 @@ std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned st
     pass_barrier();
     check_gl("wavefront: compaction");
     return total;
+}
+
+std::vector<RayRun> Wavefront::compact_blocks(std::size_t hits, const std::vector<SlotBlock>& blocks, Buffer& out) {
+    const std::size_t n = blocks.size() * hits;
+    // The scan's total goes to word 0 of counts_, its value at each inner block boundary to the words after it: the
+    // used slots before that block. All of them in one read-back.
+    counts_.reserve(blocks.size() * sizeof(std::uint32_t));
+    offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
+    scan_.exclusive_flags(flags_, offsets_, n, &counts_, 0);
+    for (std::size_t b = 1; b < blocks.size(); ++b)
+        offsets_.copy_to(counts_, sizeof(std::uint32_t), b * hits * sizeof(std::uint32_t), b * sizeof(std::uint32_t));
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::uint32_t> words = counts_.download<std::uint32_t>(blocks.size());
+    ++syncs_;
+    const std::uint32_t total = words[0];
+    std::vector<RayRun> runs;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        const std::uint32_t begin = b == 0 ? 0 : words[b], end = b + 1 < blocks.size() ? words[b + 1] : total;
+        if (begin < end) runs.push_back({begin, end - begin, blocks[b].kind, blocks[b].light});
+    }
+    if (total == 0) return runs;
+    out.reserve(std::size_t(total) * sizeof(WavefrontRay));
+    flags_.bind(kBindingCompactFlags);
+    offsets_.bind(kBindingCompactOffsets);
+    ray_slots_.bind(kBindingCompactValues);
+    out.bind(kBindingCompactOut);
+    compact_.set("n", unsigned(n));
+    compact_.set("stride", unsigned(sizeof(WavefrontRay) / 4));
+    compact_.dispatch_threads(n * (sizeof(WavefrontRay) / 4));
+    pass_barrier();
+    check_gl("wavefront: compaction");
+    return runs;
 }
 
 // The pixels of band b: the first one and how many (whole rows; the last band may be shorter).

@@ -199,6 +199,7 @@ Image render_stage01(const Scene& scene, const RenderSettings& settings) {
     const BruteForceTracer<float> tracer(scene, settings.intersect);
     WhittedSettings ws;
     ws.effects = settings.effects;
+    ws.max_depth = settings.max_depth;
     const Whitted<float, BruteForceTracer<float>> whitted(scene, tracer, ws);
     Image image(settings.width, settings.height);
     RayCounters counters;
@@ -252,6 +253,24 @@ TEST(RadianceSum, SunOf1e5LuxAgreesWithStage01) {
     expect_agrees_with_stage01(bright_scene(LightType::Directional, 1e5f, 48, 36), "1e5 lux sun", 1e5f);
 }
 
+// BLEND weights a surface's terms by its coverage even where no ray bounces (max depth 0, no mirror, no glass): the
+// shade pass then has no slots for secondary rays and must not write any (it once cleared two blocks of flags there,
+// which were the lights' shadow slots: the shadow rays were counted, never traced, and the lit image went dark,
+// brightest 0.024 instead of 1.5). Every ray counted is traced: one hit record each.
+TEST(RadianceSum, BlendWithoutBouncesTracesEveryShadowRay) {
+    const Scene scene = builtin_scene_for("cutouts", 48, 36);
+    RenderSettings settings = test_frame_settings(scene, 48, 36);
+    settings.max_depth = 0;
+    settings.effects.reflections = settings.effects.refractions = false;
+    ASSERT_TRUE(settings.effects.blend && settings.effects.shadows);
+    const FrameResult r = render_hybrid(scene, settings, kBruteForce);
+    EXPECT_GT(r.stats.counters.rays[int(RayKind::Shadow)], 1000u);
+    EXPECT_EQ(r.hits.size(), traced_rays(r));
+    float brightest = 0.0f;
+    for (const glm::vec3& p : r.image.pixels) brightest = std::max({brightest, p.r, p.g, p.b});
+    EXPECT_GT(brightest, 1.0f);
+}
+
 // Beyond 2^63 per sample a channel saturates at 2^63: never negative, never wrapped.
 TEST(RadianceSum, BeyondItsRangeSaturatesInsteadOfWrapping) {
     const Scene scene = bright_scene(LightType::Directional, 1e30f, 32, 24);
@@ -287,6 +306,54 @@ TEST(BatchTraversal, BruteForceInSlicesGivesIdenticalImagesHitsAndCounts) {
         EXPECT_GE(sliced.dispatches() - before, int((triangles + 6) / 7)) << name;
         expect_same_frame(per_ray, batched, true);
     }
+}
+
+// The runs a batch traversal is given (RayRun) are the batch's maximal runs of one kind (and one light), in order,
+// covering it: what stage 04 builds one hierarchy per. Checked against the rays themselves on whitted (reflections,
+// refractions), on eight lights under a tiny storage limit (shade runs of one light each), and on whitted with its
+// opaque surfaces made BLEND, where transparency rays and refraction rays come from the same batch of hits.
+Scene many_lights_scene(int width, int height);
+
+TEST(BatchTraversal, RunsAreTheBatchsMaximalRunsOfOneKindAndLight) {
+    std::size_t triangles = 0;
+    gpu::BruteForceTraversal brute([&] { return triangles; }, 1u << 20);
+    gpu::Traversal checked = brute.traversal();
+    std::set<std::pair<RayKind, std::uint32_t>> seen;
+    int batches = 0;
+    const auto check = [&](const gpu::BatchTraceInputs& in) {
+        ++batches;
+        const std::vector<gpu::WavefrontRay> rays = in.rays.download<gpu::WavefrontRay>(in.count, in.first);
+        const std::vector<gpu::RayRun> expected = gpu::ray_runs(rays, 0, rays.size());
+        for (const gpu::RayRun& run : expected) seen.insert({run.kind, run.light});
+        ASSERT_EQ(in.runs.size(), expected.size()) << "batch " << batches;
+        for (std::size_t r = 0; r < expected.size(); ++r) {
+            EXPECT_EQ(in.runs[r].first, expected[r].first) << "batch " << batches << ", run " << r;
+            EXPECT_EQ(in.runs[r].count, expected[r].count) << "batch " << batches << ", run " << r;
+            EXPECT_EQ(in.runs[r].kind, expected[r].kind) << "batch " << batches << ", run " << r;
+            EXPECT_EQ(in.runs[r].light, expected[r].light) << "batch " << batches << ", run " << r;
+        }
+    };
+    const auto trace = checked.trace_batch, shadow = checked.shadow_batch;
+    checked.trace_batch = [&, trace](const gpu::BatchTraceInputs& in) { check(in); trace(in); };
+    checked.shadow_batch = [&, shadow](const gpu::BatchTraceInputs& in) { check(in); shadow(in); };
+
+    Scene blend = builtin_scene_for("whitted", 64, 48);
+    for (Material& m : blend.materials)
+        if (m.transmission == 0.0f) {
+            m.alpha_mode = AlphaMode::Blend;
+            m.base_color.a = 0.5f;
+        }
+    const std::pair<Scene, std::size_t> cases[] = {{builtin_scene_for("whitted", 64, 48), 0},
+                                                   {many_lights_scene(64, 48), 48 << 10},
+                                                   {blend, 0}};
+    for (const auto& [scene, limit] : cases) {
+        triangles = scene.triangle_count();
+        render_hybrid(scene, test_frame_settings(scene, 64, 48), checked, limit);
+    }
+    EXPECT_GT(batches, 10);
+    for (RayKind k : {RayKind::Reflection, RayKind::Refraction, RayKind::Transparency})
+        EXPECT_TRUE(seen.count({k, 0u})) << ray_kind_name(k);
+    EXPECT_TRUE(seen.count({RayKind::Shadow, 7u}));
 }
 
 // Whitted with eight lights (the scene's own, then copies moved around): shading runs once per light when the

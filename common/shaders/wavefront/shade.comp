@@ -9,8 +9,11 @@
 // compiled.
 //
 // Outputs go to fixed slots of wf_ray_slots (flag 1 when used), so that compaction keeps them grouped and in the
-// order of the hits: for hit i of n, its reflection ray at slot i, its refraction (or transparency) ray at n + i,
-// its shadow ray towards light wf_light_first + l at wf_shadow_slot_base + l n + i. When the shadow slots of all
+// order of the hits: for hit i of n, its reflection ray at slot i, its refraction ray at n + i, its transparency ray
+// (ENABLE_BLEND) at 2n + i, its shadow ray towards light wf_light_first + l at wf_shadow_slot_base + l n + i. Each
+// kind (and light) has its block, so the queues hold them in runs (rt::gpu::RayRun) whose lengths the host learns
+// from the compaction. The secondary slots exist only with WF_SECONDARY_RAYS (some effect spawns rays and
+// max_depth > 0); without it a BLEND surface still weights its terms by coverage. When the shadow slots of all
 // lights would not fit in a storage block, rt::gpu::Wavefront runs the pass once per range of lights; only the last
 // run (wf_shade_local = 1) adds the emission and ambient terms and spawns reflection, refraction and transparency
 // rays.
@@ -87,19 +90,23 @@ void shade(uint i, WavefrontHit entry) {
     if (wf_shade_local == 0) return;
     wf_accumulate(incoming.pixel, weight * local);
 
-#if defined(ENABLE_REFLECTIONS) || defined(ENABLE_REFRACTIONS) || defined(ENABLE_BLEND)
+#ifdef WF_SECONDARY_RAYS
     wf_flags[i] = 0u;
     wf_flags[n_hits + i] = 0u;
+#ifdef ENABLE_BLEND
+    wf_flags[2u * n_hits + i] = 0u;
+#endif
     const uint depth = wf_depth(incoming);
     if (int(depth) >= wf_max_depth) return;
 #ifdef ENABLE_BLEND
-    // The transparency ray: straight on through the surface, in the refraction ray's slot (path 2p + 1).
+    // The transparency ray: straight on through the surface (path 2p + 1, as a refraction ray: a BLEND surface does
+    // not refract), in its own block.
     const vec3 through_weight = incoming.weight * (1.0 - coverage);
     if (blend_surface && whitted_max_component(through_weight) > wf_cutoff) {
-        wf_ray_slots[n_hits + i] = wf_make_ray(whitted_spawn_origin(sp, d, wf_offset, wf_epsilon), d, RT_INFINITY,
-                                               through_weight, incoming.pixel, depth + 1u, WF_KIND_TRANSPARENCY,
-                                               2u * incoming.path + 1u, 0u);
-        wf_flags[n_hits + i] = 1u;
+        wf_ray_slots[2u * n_hits + i] = wf_make_ray(whitted_spawn_origin(sp, d, wf_offset, wf_epsilon), d,
+                                                    RT_INFINITY, through_weight, incoming.pixel, depth + 1u,
+                                                    WF_KIND_TRANSPARENCY, 2u * incoming.path + 1u, 0u);
+        wf_flags[2u * n_hits + i] = 1u;
         ++transparency_rays;
     }
 #endif
