@@ -1,7 +1,8 @@
 // bench_radix_sort: keys per second of RadixSort (32-bit keys with 32-bit values, all 32 bits sorted unless
-// --key-bits says otherwise) for 2^16 .. 2^24 elements, with the GL renderer it ran on. docs/benchmarks.md keeps
-// the results. Each size: one warm-up sort, then --repeats timed sorts (wall clock between glFinish calls).
-//   build/bin/bench_radix_sort [--key-bits B] [--repeats R] [--max-log L] [--backend auto|egl|osmesa]
+// --key-bits says otherwise) for 2^16 .. 2^24 elements (--min-log, --max-log), with the GL renderer it ran on.
+// docs/benchmarks.md keeps the results. Each size: one warm-up sort, then --repeats timed sorts (wall clock between
+// glFinish calls). Stage 05 sorts arrays of a few thousand keys: --min-log 10 shows what a pass costs there.
+//   build/bin/bench_radix_sort [--key-bits B] [--repeats R] [--min-log L] [--max-log L] [--backend auto|egl|osmesa]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -17,12 +18,13 @@
 using namespace rt::gpu;
 
 int main(int argc, char** argv) try {
-    unsigned key_bits = 32, repeats = 3, max_log = 24;
+    unsigned key_bits = 32, repeats = 3, min_log = 16, max_log = 24;
     std::string backend = "auto";
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string option = argv[i], value = argv[i + 1];
         if (option == "--key-bits") key_bits = unsigned(std::stoul(value));
         else if (option == "--repeats") repeats = unsigned(std::stoul(value));
+        else if (option == "--min-log") min_log = unsigned(std::stoul(value));
         else if (option == "--max-log") max_log = unsigned(std::stoul(value));
         else if (option == "--backend") backend = value;
         else throw std::invalid_argument("unknown option " + option);
@@ -33,7 +35,7 @@ int main(int argc, char** argv) try {
     std::printf("%10s %12s %14s\n", "elements", "ms/sort", "Mkeys/s");
     RadixSort sort;
     std::mt19937 rng(1);
-    for (unsigned log = 16; log <= max_log; ++log) {
+    for (unsigned log = min_log; log <= max_log; ++log) {
         const std::size_t n = std::size_t(1) << log;
         std::vector<std::uint32_t> keys(n), values(n);
         for (std::size_t i = 0; i < n; ++i) keys[i] = std::uint32_t(rng()), values[i] = std::uint32_t(i);
