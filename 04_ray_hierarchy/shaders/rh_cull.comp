@@ -51,20 +51,19 @@ uniform uint rh_children_slot;     // RH_INFO_STEP_COUNT + step + 1: the childre
 #endif
 
 shared uint rh_group_sum;
-shared uint rh_level_in[32], rh_level_out[32];
-shared uint rh_object_in, rh_object_out;
+// The group's counts per ray level, four 8-bit fields in one word so that a pair adds them with one shared atomic
+// (a work group has 64 pairs, so no field passes 255): pairs tested, those kept, and of them the ones whose object
+// side is an object node (not a triangle). On llvmpipe the four atomics a pair made before took a quarter of the pass.
+shared uint rh_level_counts[32];
+#define RH_COUNT_IN 1u
+#define RH_COUNT_OUT (1u << 8)
+#define RH_COUNT_OBJECT_IN (1u << 16)
+#define RH_COUNT_OBJECT_OUT (1u << 24)
 
 void main() {
     const uint lane = gl_LocalInvocationIndex;
-    if (lane < 32u) {
-        rh_level_in[lane] = 0u;
-        rh_level_out[lane] = 0u;
-    }
-    if (lane == 0u) {
-        rh_group_sum = 0u;
-        rh_object_in = 0u;
-        rh_object_out = 0u;
-    }
+    if (lane < 32u) rh_level_counts[lane] = 0u;
+    if (lane == 0u) rh_group_sum = 0u;
     barrier();
     const uint i = rt_global_index();
     uvec2 p = uvec2(0u);
@@ -88,11 +87,10 @@ void main() {
                 may_hit = rh_may_hit(node, s);
                 split_rays = triangle || (rh_split_larger == 1u && rh_split_rays(node, s));
             }
-            atomicAdd(rh_level_in[level], 1u);
-            if (!triangle) atomicAdd(rh_object_in, 1u);
+            uint counts = RH_COUNT_IN + (triangle ? 0u : RH_COUNT_OBJECT_IN);
+            if (may_hit) counts += RH_COUNT_OUT + (triangle ? 0u : RH_COUNT_OBJECT_OUT);
+            atomicAdd(rh_level_counts[level], counts);
             if (may_hit) {
-                atomicAdd(rh_level_out[level], 1u);
-                if (!triangle) atomicAdd(rh_object_out, 1u);
                 if (split_rays) {
                     n = min(rh_branching, rh_level_nodes[level - 1u] - index * rh_branching);
                 } else {
@@ -114,12 +112,13 @@ void main() {
 #else
         rh_group_offsets[rt_group_index()] = group_first;
 #endif
-        rh_add64(RH_INFO_OBJECT_IN, rh_object_in);
-        rh_add64(RH_INFO_OBJECT_OUT, rh_object_out);
     }
-    if (lane < 32u) {
-        rh_add64(RH_INFO_LEVEL_IN + 2u * lane, rh_level_in[lane]);
-        rh_add64(RH_INFO_LEVEL_OUT + 2u * lane, rh_level_out[lane]);
+    if (lane < 32u) {   // rh_add64 adds nothing for a level no pair was on
+        const uint c = rh_level_counts[lane];
+        rh_add64(RH_INFO_LEVEL_IN + 2u * lane, c & 0xffu);
+        rh_add64(RH_INFO_LEVEL_OUT + 2u * lane, (c >> 8) & 0xffu);
+        rh_add64(RH_INFO_OBJECT_IN, (c >> 16) & 0xffu);
+        rh_add64(RH_INFO_OBJECT_OUT, c >> 24);
     }
 #ifdef RH_CULL_WRITES_CHILDREN
     barrier();
