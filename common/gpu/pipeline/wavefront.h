@@ -202,6 +202,7 @@ private:
     std::pair<std::size_t, std::size_t> band_pixels(std::size_t band) const;
     template <class F> void for_each_tile_batch(F&& run_batch);
     std::uint32_t compact(const Buffer& slots, std::size_t n, unsigned stride_uints, Buffer& out);
+    void scatter_slots(const Buffer& slots, std::size_t n, unsigned stride_uints, std::uint32_t total, Buffer& out);
     // A shade run's slots, `blocks` blocks of `hits` each, packed into `out`: the runs of the blocks (empty ones left
     // out), from one read-back of the scan at every block boundary.
     struct SlotBlock {

@@ -68,7 +68,14 @@ std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned st
     std::uint32_t total = 0;
     counts_.download(&total, sizeof total);
     ++syncs_;
-    if (total == 0) return 0;
+    scatter_slots(slots, n, stride_uints, total, out);
+    return total;
+}
+
+// The used ones of n slots (flags_, scanned into offsets_; `total` of them) packed into `out`.
+void Wavefront::scatter_slots(const Buffer& slots, std::size_t n, unsigned stride_uints, std::uint32_t total,
+                              Buffer& out) {
+    if (total == 0) return;
     out.reserve(std::size_t(total) * stride_uints * sizeof(std::uint32_t));
     flags_.bind(kBindingCompactFlags);
     offsets_.bind(kBindingCompactOffsets);
@@ -79,7 +86,6 @@ std::uint32_t Wavefront::compact(const Buffer& slots, std::size_t n, unsigned st
     compact_.dispatch_threads(n * stride_uints);
     pass_barrier();
     check_gl("wavefront: compaction");
-    return total;
 }
 
 std::vector<RayRun> Wavefront::compact_blocks(std::size_t hits, const std::vector<SlotBlock>& blocks, Buffer& out) {
@@ -100,17 +106,7 @@ std::vector<RayRun> Wavefront::compact_blocks(std::size_t hits, const std::vecto
         const std::uint32_t begin = b == 0 ? 0 : words[b], end = b + 1 < blocks.size() ? words[b + 1] : total;
         if (begin < end) runs.push_back({begin, end - begin, blocks[b].kind, blocks[b].light});
     }
-    if (total == 0) return runs;
-    out.reserve(std::size_t(total) * sizeof(WavefrontRay));
-    flags_.bind(kBindingCompactFlags);
-    offsets_.bind(kBindingCompactOffsets);
-    ray_slots_.bind(kBindingCompactValues);
-    out.bind(kBindingCompactOut);
-    compact_.set("n", unsigned(n));
-    compact_.set("stride", unsigned(sizeof(WavefrontRay) / 4));
-    compact_.dispatch_threads(n * (sizeof(WavefrontRay) / 4));
-    pass_barrier();
-    check_gl("wavefront: compaction");
+    scatter_slots(ray_slots_, n, sizeof(WavefrontRay) / 4, total, out);
     return runs;
 }
 
