@@ -2,7 +2,7 @@
 // Exclusive (or inclusive) prefix sum of one block of SCAN_BLOCK uints per work group, by raking (Merrill & Grimshaw
 // 2009; CUB's BlockScan): each of SCAN_RAKE_THREADS threads sums a run of SCAN_ITEMS consecutive elements in
 // registers, one thread scans the runs' totals in shared memory, and each thread writes its run's prefixes from its
-// run's start. Three barriers in all (the tree scan of Blelloch 1990 needs two per level of the block, 18 for 512),
+// run's start. Four barriers in all (the tree scan of Blelloch 1990 needs two per level of the block, 18 for 512),
 // and the serial parts are what a SIMD core does best (on llvmpipe, a vector of lanes each walking its own run).
 // Writes the block's total to scan_sums[block_base + block]; the host scans those sums recursively and adds them
 // back (scan_add.comp). The arrays are bound from the window's first element (n elements); block_base is its first
