@@ -95,7 +95,7 @@ struct RayRun {
 
 // The maximal runs of rays[first, first + count) (from `first`): what the pipeline hands a batch traversal for them,
 // worked out from the rays themselves (for callers outside the pipeline: tests).
-std::vector<RayRun> ray_runs(const std::vector<struct WavefrontRay>& rays, std::size_t first, std::size_t count);
+std::vector<RayRun> ray_runs(const std::vector<WavefrontRay>& rays, std::size_t first, std::size_t count);
 
 // What a batch traversal gets for one pass: trace rays[first, first + count) (WavefrontRay) and write result i for
 // ray first + i: WavefrontTraceResult (trace_batch, closest hit) or a uint, 1 = occluded (shadow_batch, any hit).
