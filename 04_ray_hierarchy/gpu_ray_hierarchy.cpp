@@ -184,15 +184,15 @@ void GpuRayHierarchy::tally_group() {
 // shadow rays, in a block of its own and knows how many went to each, so nothing is read back to find them.
 std::vector<GpuRayHierarchy::Group> GpuRayHierarchy::find_groups(const gpu::BatchTraceInputs& in) {
     std::vector<Group> groups;
-    std::size_t next = 0;
+    std::size_t next = 0;   // where the next run must start
     for (const gpu::RayRun& run : in.runs) {
-        if (run.first != next || run.count == 0 || run.first + run.count > in.count)
-            throw std::logic_error("04_ray_hierarchy: the batch's runs do not cover its rays in order");
+        if (run.first != next || run.count == 0) break;
         groups.push_back({std::uint32_t(run.first), std::uint32_t(run.count),
                           std::min<std::uint32_t>(std::uint32_t(run.kind), std::uint32_t(kRayKinds - 1))});
-        next = run.first + run.count;
+        next += run.count;
     }
-    if (next != in.count) throw std::logic_error("04_ray_hierarchy: the batch's runs do not cover its rays in order");
+    if (groups.size() != in.runs.size() || next != in.count)
+        throw std::logic_error("04_ray_hierarchy: the batch's runs do not cover its rays in order");
     return groups;
 }
 

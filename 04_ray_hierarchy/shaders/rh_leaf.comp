@@ -27,7 +27,8 @@ uniform uint rh_sphere_test;    // 1: the sphere test first (--sphere-test on); 
 uniform uint rh_box_test;       // 1: then the box test (--box-test on); 0: no box test
 
 // The group's leaf pairs, box tests and exact tests, 8-bit fields of one word (64 pairs a group), so that a pair adds
-// its counts with one shared atomic (three cost llvmpipe a sixth of the pass, as in rh_cull.comp).
+// its counts with one shared atomic instead of three (as in rh_cull.comp, where separate ones took about a quarter
+// of the pass on llvmpipe).
 shared uint rh_group_counts;
 #define RH_COUNT_LEAF 1u
 #define RH_COUNT_BOX (1u << 8)

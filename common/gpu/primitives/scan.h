@@ -1,7 +1,8 @@
 // Work-efficient exclusive prefix sum over uint arrays of any length, and stream compaction built on it (flag -> scan
-// -> scatter). Multi-level: blocks of kScanBlock elements are scanned in shared memory by raking (scan_block.comp:
-// each thread a run of 8 in registers, one thread the runs' totals), their totals are scanned recursively, and added back (scan_add.comp). The radix sort
-// (radix_sort.h) uses Scan::exclusive on its digit counts; stage 05's decompression the inclusive and segmented scans.
+// -> scatter). Multi-level: blocks of kScanBlock elements are scanned in shared memory by raking (scan_block.comp: each
+// thread a run of 8 in registers, one thread the runs' totals), their totals are scanned recursively, and added back
+// (scan_add.comp). The radix sort (radix_sort.h) uses Scan::exclusive on its digit counts; stage 05's decompression the
+// inclusive and segmented scans.
 //
 // Exclusive and inclusive scans take any n up to 2^32 - 1: arrays beyond GL_MAX_SHADER_STORAGE_BLOCK_SIZE (llvmpipe:
 // 128 MiB = 2^25 uints) are bound in windows of at most that size. The segmented scan and the compaction read or
