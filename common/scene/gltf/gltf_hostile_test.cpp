@@ -334,6 +334,25 @@ TEST_F(GltfHostile, NegativeAndOutOfRangeValuesAreClampedWithAWarning) {
     EXPECT_NE(warnings.find("light 0: intensity -5"), std::string::npos) << warnings;
 }
 
+TEST_F(GltfHostile, SpotWhoseInnerConeIsNotInsideItsOuterConeIsWarnedOfAndHasAHardEdge) {
+    json doc = triangle();
+    doc["extensions"] = {{"KHR_lights_punctual",
+                          {{"lights", {{{"type", "spot"}, {"spot", {{"innerConeAngle", 1.0}, {"outerConeAngle", 0.5}}}},
+                                       {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.25}, {"outerConeAngle", 0.5}}}}}}}}};
+    doc["nodes"][0]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+    doc["nodes"].push_back({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    doc["scenes"][0]["nodes"].push_back(1);
+    std::string warnings;
+    const SceneAsset asset = load_gltf(write(doc), &warnings);
+    ASSERT_EQ(asset.lights.size(), 2u);
+    EXPECT_EQ(asset.lights[0].inner_cone, std::nextafter(0.5f, 0.0f)) << "just inside the outer cone";
+    EXPECT_EQ(asset.lights[0].outer_cone, 0.5f);
+    EXPECT_NE(warnings.find("light 0: innerConeAngle 1 is not below outerConeAngle 0.5"), std::string::npos)
+        << warnings;
+    EXPECT_EQ(asset.lights[1].inner_cone, 0.25f) << "a valid cone is kept as it is";
+    EXPECT_EQ(warnings.find("light 1"), std::string::npos) << warnings;
+}
+
 TEST_F(GltfHostile, AlphaCutoffBelowZeroIsClampedBeyondAFloatRefusedAndAnUnknownAlphaModeIsOpaque) {
     json doc = triangle();
     doc["meshes"][0]["primitives"][0]["material"] = 0;
