@@ -5,7 +5,10 @@
 #include "gpu_ray_hierarchy.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <vector>
 
+#include "common/gpu/gl/storage_limit.h"
 #include "gpu_ray_hierarchy_detail.h"
 
 namespace rt {
@@ -13,6 +16,7 @@ namespace rt {
 namespace {
 using gpu::Program;
 using rh_detail::barrier;
+using rh_detail::kMaxObjectLevels;
 }  // namespace
 
 void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<ObjectRange>& objects,
@@ -72,31 +76,77 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     tree_.dispatch_threads(n);
     barrier();
     radix_->sort(keys_, order_, n, 3 * kMortonAxisBits);
-    // The levels' sizes follow from n alone: level 1 holds ceil(n / kClusterSize) clusters, each level above
-    // ceil(below / kObjectBranching) nodes, up to one.
-    std::uint32_t total = 0;
-    for (std::uint32_t count = (n + kClusterSize - 1) / kClusterSize;;
-         count = (count + kObjectBranching - 1) / kObjectBranching) {
-        object_level_first_.push_back(total);
-        object_level_count_.push_back(count);
-        total += count;
-        if (count <= 1) break;
-    }
-    objects_buf_.reserve(std::size_t(total) * sizeof(ObjectNode));
-    spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
-    objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-    order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
-    for (std::size_t l = 0; l < object_level_count_.size(); ++l) {
-        tree_.set("ot_mode", l == 0 ? 1u : 2u);
-        tree_.set("ot_count", object_level_count_[l]);
-        tree_.set("ot_triangles", n);
-        tree_.set("ot_child_first", l == 0 ? 0u : object_level_first_[l - 1]);
-        tree_.set("ot_child_count", l == 0 ? n : object_level_count_[l - 1]);
-        tree_.set("ot_node_first", object_level_first_[l]);
+    // The levels (ot_build.comp modes 3, 4, 1/2 and a scan each): their sizes are the GPU's, so every level a tree of
+    // n triangles can have is dispatched, each sized by a bound (a level at least halves the one below, group_heads),
+    // and the sizes are read back once, at the end (one sync a frame, outside every batch).
+    // The prefix groups' worst case is a tree of about n nodes (64 bytes a triangle); where that passes the GPU's
+    // storage limit (llvmpipe: 128 MiB, 2M triangles), every 4 nodes make a group (about n / 3 nodes), as before
+    // 2026-12-05.
+    std::vector<std::uint32_t> sizes;   // bounds of each level's nodes
+    std::uint64_t total_bound = 0;
+    const auto size_levels = [&](std::uint32_t divisor) {
+        sizes.clear();
+        total_bound = 0;
+        for (std::uint32_t below = n;;) {
+            sizes.push_back((below + divisor - 1) / divisor);
+            total_bound += sizes.back();
+            if (sizes.back() <= 1) break;
+            below = sizes.back();
+        }
+    };
+    size_levels(2);
+    const std::size_t limit = tree_limit_for_testing ? tree_limit_for_testing : gpu::max_storage_block_bytes();
+    tree_every_4_ = total_bound * sizeof(ObjectNode) > limit;
+    if (tree_every_4_) size_levels(kObjectBranching);
+    if (sizes.size() > kMaxObjectLevels)
+        throw std::logic_error("04_ray_hierarchy: more object tree levels than ot_levels holds");
+    gpu::check_storage_block("04_ray_hierarchy: the object tree", std::size_t(total_bound) * sizeof(ObjectNode) / 4);
+    objects_buf_.reserve(std::size_t(total_bound) * sizeof(ObjectNode));
+    tree_groups_.reserve(std::size_t(n) * 4);
+    // ot_build.comp's ot_codes: the levels' words, then two halves of codes (uvec4s), one for the level below and
+    // one for the level being built, alternately.
+    constexpr std::uint32_t kLevelVec4s = (2 + 2 * kMaxObjectLevels + 3) / 4;
+    const std::uint32_t half = sizes[0];
+    tree_codes_.reserve((std::size_t(kLevelVec4s) + 2 * std::size_t(half)) * 16);
+    const std::vector<std::uint32_t> zero(4 * kLevelVec4s, 0u);
+    tree_codes_.upload(zero.data(), zero.size() * 4);
+    tree_.set("ot_triangles", n);
+    tree_.set("ot_every_4", tree_every_4_ ? 1u : 0u);
+    for (std::size_t l = 0; l < sizes.size(); ++l) {
+        const std::uint32_t below = l == 0 ? n : sizes[l - 1];
+        const auto bind = [&] {
+            order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
+            spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
+            objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
+            keys_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
+            tree_groups_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+            tree_codes_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+        };
+        bind();
         tree_.set("ot_level", unsigned(l + 1));
-        tree_.set("ot_fanout", l == 0 ? kClusterSize : kObjectBranching);
-        tree_.dispatch_threads(object_level_count_[l]);
+        tree_.set("ot_codes_in", kLevelVec4s + unsigned((l + 1) % 2) * half);
+        tree_.set("ot_codes_out", kLevelVec4s + unsigned(l % 2) * half);
+        tree_.set("ot_mode", 3u);
+        tree_.set("ot_count", below);
+        tree_.dispatch_threads(below);
         barrier();
+        scan_.exclusive_flags(tree_groups_, tree_groups_, below, &tree_codes_, 0);   // the total to level word 0
+        bind();
+        tree_.set("ot_mode", 4u);
+        tree_.dispatch_threads(below);
+        barrier();
+        tree_.set("ot_mode", l == 0 ? 1u : 2u);
+        tree_.set("ot_count", sizes[l]);
+        tree_.dispatch_threads(sizes[l]);
+        barrier();
+    }
+    const std::vector<std::uint32_t> levels = tree_codes_.download<std::uint32_t>(2 + 2 * sizes.size());
+    ++syncs;
+    std::uint32_t total = 0;
+    for (std::size_t l = 0; l < sizes.size() && levels[2 + 2 * l] > 0; ++l) {
+        object_level_first_.push_back(levels[3 + 2 * l]);
+        object_level_count_.push_back(levels[2 + 2 * l]);
+        total += levels[2 + 2 * l];
     }
     object_nodes_ = total;
     objects_ = object_level_count_.back();

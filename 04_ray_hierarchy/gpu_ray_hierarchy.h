@@ -67,6 +67,10 @@ public:
     // The object tree of the last prepare(): levels above the triangles and nodes (0 without a tree).
     std::uint32_t object_levels() const { return std::uint32_t(object_level_count_.size()); }
     std::size_t object_nodes() const { return object_nodes_; }
+    // The last tree grouped every 4 nodes (build_tree: its prefix groups' worst case would pass the storage limit;
+    // build_object_tree's every_4). The limit it is held against: the GL limit, or this many bytes (for the tests).
+    bool tree_every_4() const { return tree_every_4_; }
+    std::size_t tree_limit_for_testing = 0;
     // The tree as the GPU built it (order, nodes, levels), for the tests: the same as build_object_tree's.
     ObjectTree download_tree() const;
     // The bounding spheres of the finest objects the ray nodes are culled against, as prepare() left them: the
@@ -115,11 +119,15 @@ private:
     gpu::Program spheres_, tree_, build_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_,
         tally_pass_;
     gpu::Program cull_children_;   // rh_cull.comp writing the children itself (a step whose children fit one window)
-    gpu::Scan scan_;   // the hit list's prune (prune_hits)
+    gpu::Scan scan_;   // the hit list's prune (prune_hits) and the tree's groups (build_tree)
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
     gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, state_, hits_, hits_tmp_, prune_flags_,
         prune_offsets_;
     gpu::Buffer tally_;   // per ray kind, the GPU's sums of the traversal's counts (rh_tally.comp)
+    // The tree's build (ot_build.comp): per node below, its group; the levels' sizes and first nodes, and per
+    // node the codes it spans (two levels, alternately below and being built).
+    gpu::Buffer tree_groups_, tree_codes_;
+    bool tree_every_4_ = false;   // the last tree grouped every 4 nodes (its prefix groups would not fit the limit)
     gpu::Buffer args_;   // indirect dispatch arguments per step (3 uints each), written by rh_args.comp
     std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per step of the depth-first traversal (0 = the top)
     std::vector<std::uint32_t> level_first_, level_nodes_;   // the ray hierarchy's levels (level 0 = the rays)

@@ -21,6 +21,8 @@ inline constexpr std::uint32_t kInfoWords = 224, kInfoExact = 10, kInfoObjectIn 
                                kInfoStepCount = 160,
                                kInfoGroupFirst = 8;
 inline constexpr int kMaxSteps = 63;   // rh_info.glsl: RH_INFO_STEP_COUNT slots
+// ot_build.comp's ot_levels: levels of the object tree (each at least halves the one below: 2^40 triangles).
+inline constexpr std::size_t kMaxObjectLevels = 40;
 // rh_tally.comp: per ray kind, the 64-bit sums of rh_info's words kInfoExact .. kInfoBoxTests + 1, then the sphere
 // tests and the fold tests.
 inline constexpr std::uint32_t kTallyWords = 144, kTallyGroupPairs = 69, kTallySphere = 138, kTallyFold = 140;

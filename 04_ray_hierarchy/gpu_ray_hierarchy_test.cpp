@@ -32,6 +32,26 @@ Scene transformed(Scene scene, float scale, glm::vec3 offset) {
     return scene;
 }
 
+// A scene of small triangles (cornell's first's material), one around each centre.
+Scene triangles_at(const std::vector<glm::vec3>& centres) {
+    Scene scene = builtin_scene("cornell");
+    scene.positions.clear();
+    scene.normals.clear();
+    scene.uvs.clear();
+    scene.tangents.clear();
+    scene.material_ids.assign(centres.size(), scene.material_ids[0]);
+    Bounds b;
+    for (glm::vec3 c : centres)
+        for (glm::vec3 corner : {glm::vec3(0.0f), glm::vec3(0.25f, 0.0f, 0.0f), glm::vec3(0.0f, 0.25f, 0.0f)}) {
+            scene.positions.push_back(c + corner);
+            scene.normals.emplace_back(0.0f, 0.0f, 1.0f);
+            scene.uvs.emplace_back(0.0f);
+            b.add(c + corner);
+        }
+    scene.bounds = b;
+    return scene;
+}
+
 void expect_brute_force_answers(const Scene& scene, const std::string& what) {
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
@@ -127,43 +147,64 @@ TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
 TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
     gpu::test_context();
     const Scene cornell = builtin_scene("cornell");
-    for (const auto& [what, scene] : {std::pair<std::string, Scene>{"cornell", cornell},
+    // Triangles in x cells 0, 1, 2, 4, ... 512 of the Morton grid: each code's highest bit is above the last's, so
+    // the prefixes split one node off at a time and the level is grouped every 4 nodes (group_heads' fallback).
+    std::vector<glm::vec3> centres = {glm::vec3(0.0f)};
+    for (int k = 0; k < 10; ++k) centres.emplace_back(float(1 << k) + 0.5f, 0.0f, 0.0f);
+    centres.emplace_back(1024.0f, 0.0f, 0.0f);
+    const Scene powers_of_two = triangles_at(centres);
+    for (const auto& [name, scene] : {std::pair<std::string, Scene>{"cornell", cornell},
                                       {"spheres:45", builtin_scene("spheres:45")},
                                       {"cornell x1e3 at 3e6", transformed(cornell, 1e3f, glm::vec3(3e6f, -1e6f, 2e6f))},
-                                      {"cornell x1e-4", transformed(cornell, 1e-4f, glm::vec3(1e-3f))}}) {
-        gpu::GpuScene gpu_scene;
-        gpu_scene.upload(scene);
-        GpuRayHierarchy h;
-        h.options.objects = ObjectMode::tree;
-        h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
-        const ObjectTree gpu = h.download_tree();
-        std::vector<glm::vec4> spheres;
-        for (std::size_t t = 0; t < scene.triangle_count(); ++t)
-            spheres.push_back(rh_triangle_sphere(scene.positions[3 * t], scene.positions[3 * t + 1],
-                                                 scene.positions[3 * t + 2]));
-        const ObjectTree cpu = build_object_tree(spheres, scene.bounds.lo, scene.bounds.hi, scene.positions);
-        ASSERT_EQ(gpu.order, cpu.order) << what;
-        ASSERT_EQ(gpu.level_first, cpu.level_first) << what;
-        ASSERT_EQ(gpu.level_count, cpu.level_count) << what;
-        ASSERT_EQ(gpu.nodes.size(), cpu.nodes.size()) << what;
-        EXPECT_EQ(h.object_levels(), cpu.levels());
-        auto holds = [](glm::vec4 outer, glm::vec4 inner) {
-            return glm::length(glm::dvec3(glm::vec3(outer)) - glm::dvec3(glm::vec3(inner))) + double(inner.w) <=
-                   double(outer.w);
-        };
-        for (std::size_t i = 0; i < cpu.nodes.size(); ++i) {
-            const ObjectNode &g = gpu.nodes[i], &c = cpu.nodes[i];
-            ASSERT_EQ(g.first, c.first) << what << " node " << i;
-            ASSERT_EQ(g.count, c.count) << what << " node " << i;
-            ASSERT_EQ(g.level, c.level) << what << " node " << i;
-            ASSERT_EQ(glm::vec3(g.box_lo), glm::vec3(c.box_lo)) << what << " node " << i;   // min and max: exact
-            ASSERT_EQ(glm::vec3(g.box_hi), glm::vec3(c.box_hi)) << what << " node " << i;
-            const float scale = std::max(glm::length(glm::vec3(c.sphere)), c.sphere.w);
-            EXPECT_LE(glm::length(glm::vec3(g.sphere) - glm::vec3(c.sphere)), 1e-5f * scale) << what << " node " << i;
-            EXPECT_NEAR(g.sphere.w, c.sphere.w, 1e-5f * scale) << what << " node " << i;
-            for (std::uint32_t k = 0; k < g.count; ++k) {
-                const glm::vec4 child = g.level == 1 ? spheres[gpu.order[g.first + k]] : gpu.nodes[g.first + k].sphere;
-                ASSERT_TRUE(holds(g.sphere, child)) << what << " node " << i << " child " << k;
+                                      {"cornell x1e-4", transformed(cornell, 1e-4f, glm::vec3(1e-3f))},
+                                      {"one triangle", triangles_at({glm::vec3(1.0f)})},
+                                      {"37 triangles at one place", triangles_at(std::vector<glm::vec3>(37))},
+                                      {"codes 2^k (grouped every 4)", powers_of_two}}) {
+        // Prefix groups, and every 4 nodes (the build's choice where the prefix groups' worst case passes the limit).
+        for (const bool every_4 : {false, true}) {
+            const std::string what = name + (every_4 ? ", every 4" : "");
+            gpu::GpuScene gpu_scene;
+            gpu_scene.upload(scene);
+            GpuRayHierarchy h;
+            h.options.objects = ObjectMode::tree;
+            h.tree_limit_for_testing = every_4 ? 64 : 0;
+            h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+            ASSERT_EQ(h.tree_every_4(), every_4 && scene.triangle_count() > 2) << what;
+            const ObjectTree gpu = h.download_tree();
+            std::vector<glm::vec4> spheres;
+            for (std::size_t t = 0; t < scene.triangle_count(); ++t)
+                spheres.push_back(rh_triangle_sphere(scene.positions[3 * t], scene.positions[3 * t + 1],
+                                                     scene.positions[3 * t + 2]));
+            const ObjectTree cpu =
+                build_object_tree(spheres, scene.bounds.lo, scene.bounds.hi, scene.positions, h.tree_every_4());
+            ASSERT_EQ(gpu.order, cpu.order) << what;
+            ASSERT_EQ(gpu.level_first, cpu.level_first) << what;
+            ASSERT_EQ(gpu.level_count, cpu.level_count) << what;
+            if (name.starts_with("codes 2^k")) {
+                EXPECT_EQ(cpu.level_count[0], 3u) << "12 triangles, every 4 in a cluster";
+            }
+            ASSERT_EQ(gpu.nodes.size(), cpu.nodes.size()) << what;
+            EXPECT_EQ(h.object_levels(), cpu.levels());
+            auto holds = [](glm::vec4 outer, glm::vec4 inner) {
+                return glm::length(glm::dvec3(glm::vec3(outer)) - glm::dvec3(glm::vec3(inner))) + double(inner.w) <=
+                       double(outer.w);
+            };
+            for (std::size_t i = 0; i < cpu.nodes.size(); ++i) {
+                const ObjectNode &g = gpu.nodes[i], &c = cpu.nodes[i];
+                ASSERT_EQ(g.first, c.first) << what << " node " << i;
+                ASSERT_EQ(g.count, c.count) << what << " node " << i;
+                ASSERT_EQ(g.level, c.level) << what << " node " << i;
+                ASSERT_EQ(glm::vec3(g.box_lo), glm::vec3(c.box_lo)) << what << " node " << i;   // min and max: exact
+                ASSERT_EQ(glm::vec3(g.box_hi), glm::vec3(c.box_hi)) << what << " node " << i;
+                const float scale = std::max(glm::length(glm::vec3(c.sphere)), c.sphere.w);
+                EXPECT_LE(glm::length(glm::vec3(g.sphere) - glm::vec3(c.sphere)), 1e-5f * scale)
+                    << what << " node " << i;
+                EXPECT_NEAR(g.sphere.w, c.sphere.w, 1e-5f * scale) << what << " node " << i;
+                for (std::uint32_t k = 0; k < g.count; ++k) {
+                    const glm::vec4 child =
+                        g.level == 1 ? spheres[gpu.order[g.first + k]] : gpu.nodes[g.first + k].sphere;
+                    ASSERT_TRUE(holds(g.sphere, child)) << what << " node " << i << " child " << k;
+                }
             }
         }
     }
@@ -288,6 +329,8 @@ TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
         GpuRayHierarchy h;
         h.options.pair_capacity = capacity;
         h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+        EXPECT_EQ(h.syncs, 1u) << "the tree's level sizes, read once a frame after its build";
+        h.syncs = 0;   // the batch's own from here
         h.trace({ray_buffer, 0, rays.size(), results, nullptr, wavefront, gpu::ray_runs(rays, 0, rays.size())},
                 true);
         const std::vector<std::uint32_t> occluded = results.download<std::uint32_t>(rays.size());
@@ -312,6 +355,7 @@ TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
     const gpu::Buffer closest_rays = gpu::Buffer::from(rays);
     GpuRayHierarchy h;
     h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+    h.syncs = 0;
     h.trace({closest_rays, 0, rays.size(), results, nullptr, wavefront, gpu::ray_runs(rays, 0, rays.size())}, false);
     EXPECT_LE(h.syncs, 3u) << "one bound check (1), the hit list's room (1), the fold's flag (1)";
     EXPECT_GE(h.fold_rounds, 2u);

@@ -1,6 +1,7 @@
 #include "object_tree.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 
@@ -76,8 +77,40 @@ glm::vec4 sphere_union(const std::vector<glm::vec4>& spheres, const std::uint32_
     return sphere_union(kids.data(), kids.size());
 }
 
+std::uint32_t boundary_strength(std::uint32_t last_code, std::uint32_t next_first_code, std::uint32_t k) {
+    const std::uint32_t x = last_code ^ next_first_code;
+    if (x != 0) return 64u - std::uint32_t(std::countl_zero(x));   // 33..64: the highest bit the codes differ in
+    return 32u - std::uint32_t(std::countl_zero(k ^ (k + 1u)));    // 1..32: equal codes, split by position
+}
+
+std::vector<std::uint32_t> group_heads(const std::vector<std::uint32_t>& first_code,
+                                       const std::vector<std::uint32_t>& last_code, bool every_4) {
+    const auto m = std::uint32_t(first_code.size());
+    const auto strength = [&](std::uint32_t k) { return boundary_strength(last_code[k], first_code[k + 1], k); };
+    // Boundary k (between nodes k and k + 1) is cut when the subtree it splits holds more than kObjectBranching
+    // nodes: the nodes from just after the nearest boundary on its left at least as strong, to the nearest one on
+    // its right stronger (a Cartesian tree of the strengths, ties to the left). Four steps each way decide it.
+    std::vector<std::uint32_t> heads;
+    if (m == 0) return heads;
+    heads.push_back(0);
+    for (std::uint32_t k = 0; k + 1 < m; ++k) {
+        const std::uint32_t s = strength(k);
+        std::uint32_t left = 1, right = 1;   // nodes of the subtree on each side of the boundary
+        while (left <= kObjectBranching && k >= left && strength(k - left) < s) ++left;
+        while (right <= kObjectBranching && k + right + 1 < m && strength(k + right) <= s) ++right;
+        if (left + right > kObjectBranching) heads.push_back(k + 1);
+    }
+    // At least halve the level: otherwise (codes far apart by powers of two, one node split off at a time) every
+    // 4 nodes, as a Morton-blind grouping would.
+    if (every_4 || 2 * std::uint64_t(heads.size()) > m) {
+        heads.clear();
+        for (std::uint32_t k = 0; k < m; k += kObjectBranching) heads.push_back(k);
+    }
+    return heads;
+}
+
 ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo, glm::vec3 hi,
-                             const std::vector<glm::vec3>& triangles) {
+                             const std::vector<glm::vec3>& triangles, bool every_4) {
     ObjectTree tree;
     const std::uint32_t n = std::uint32_t(spheres.size());
     tree.order.resize(n);
@@ -88,48 +121,54 @@ ObjectTree build_object_tree(const std::vector<glm::vec4>& spheres, glm::vec3 lo
     for (std::uint32_t i = 0; i < n; ++i) codes[i] = morton_code(glm::vec3(spheres[i]), lo, scale);
     std::stable_sort(tree.order.begin(), tree.order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return codes[a] < codes[b]; });
-    // Level 1: clusters of consecutive sorted triangles.
-    add_level(tree, (n + kClusterSize - 1) / kClusterSize);
-    for (std::uint32_t j = 0; j < tree.level_count.back(); ++j) {
-        ObjectNode node;
-        node.first = j * kClusterSize;
-        node.count = std::min(kClusterSize, n - node.first);
-        node.level = 1;
-        node.sphere = sphere_union(spheres, tree.order.data(), node.first, node.count);
-        if (!triangles.empty()) {   // the box of the cluster's vertices (ot_build.comp mode 1)
-            glm::vec3 box_lo(INFINITY), box_hi(-INFINITY);
-            for (std::uint32_t k = 0; k < node.count; ++k)
-                for (std::size_t v = 0; v < 3; ++v) {
-                    const glm::vec3 p = triangles[3 * std::size_t(tree.order[node.first + k]) + v];
-                    box_lo = glm::min(box_lo, p);
-                    box_hi = glm::max(box_hi, p);
-                }
-            node.box_lo = glm::vec4(box_lo, 0.0f);
-            node.box_hi = glm::vec4(box_hi, 0.0f);
-        }
-        tree.nodes.push_back(node);
-    }
-    // Upper levels, up to a single root.
-    while (tree.level_count.back() > 1) {
-        const std::uint32_t below_first = tree.level_first.back(), below = tree.level_count.back();
-        const std::uint32_t level = tree.levels() + 1;
-        add_level(tree, (below + kObjectBranching - 1) / kObjectBranching);
-        for (std::uint32_t j = 0; j < tree.level_count.back(); ++j) {
+    // Each level's nodes and the codes they span (first, last): the sorted triangles, then each level's groups.
+    std::vector<std::uint32_t> first_code(n), last_code(n);
+    for (std::uint32_t i = 0; i < n; ++i) first_code[i] = last_code[i] = codes[tree.order[i]];
+    std::uint32_t below_first = 0;
+    for (std::uint32_t level = 1;; ++level) {
+        const std::vector<std::uint32_t> heads = group_heads(first_code, last_code, every_4);
+        const auto m = std::uint32_t(first_code.size()), groups = std::uint32_t(heads.size());
+        add_level(tree, groups);
+        std::vector<std::uint32_t> next_first(groups), next_last(groups);
+        for (std::uint32_t j = 0; j < groups; ++j) {
+            const std::uint32_t b = heads[j], e = j + 1 < groups ? heads[j + 1] : m;
             ObjectNode node;
-            node.first = below_first + j * kObjectBranching;
-            node.count = std::min(kObjectBranching, below - j * kObjectBranching);
+            node.count = e - b;
             node.level = level;
-            std::vector<glm::vec4> kids;
-            for (std::uint32_t k = 0; k < node.count; ++k) kids.push_back(tree.nodes[node.first + k].sphere);
-            node.sphere = sphere_union(kids.data(), kids.size());
-            node.box_lo = glm::vec4(INFINITY, INFINITY, INFINITY, 0.0f);
-            node.box_hi = glm::vec4(-INFINITY, -INFINITY, -INFINITY, 0.0f);
-            for (std::uint32_t k = 0; k < node.count; ++k) {
-                node.box_lo = glm::min(node.box_lo, tree.nodes[node.first + k].box_lo);
-                node.box_hi = glm::max(node.box_hi, tree.nodes[node.first + k].box_hi);
+            if (level == 1) {   // a cluster: triangles order[b, e) (ot_build.comp mode 1)
+                node.first = b;
+                node.sphere = sphere_union(spheres, tree.order.data(), node.first, node.count);
+                if (!triangles.empty()) {   // the box of the cluster's vertices
+                    glm::vec3 box_lo(INFINITY), box_hi(-INFINITY);
+                    for (std::uint32_t k = 0; k < node.count; ++k)
+                        for (std::size_t v = 0; v < 3; ++v) {
+                            const glm::vec3 p = triangles[3 * std::size_t(tree.order[node.first + k]) + v];
+                            box_lo = glm::min(box_lo, p);
+                            box_hi = glm::max(box_hi, p);
+                        }
+                    node.box_lo = glm::vec4(box_lo, 0.0f);
+                    node.box_hi = glm::vec4(box_hi, 0.0f);
+                }
+            } else {   // nodes [b, e) of the level below (mode 2)
+                node.first = below_first + b;
+                std::vector<glm::vec4> kids;
+                for (std::uint32_t k = 0; k < node.count; ++k) kids.push_back(tree.nodes[node.first + k].sphere);
+                node.sphere = sphere_union(kids.data(), kids.size());
+                node.box_lo = glm::vec4(INFINITY, INFINITY, INFINITY, 0.0f);
+                node.box_hi = glm::vec4(-INFINITY, -INFINITY, -INFINITY, 0.0f);
+                for (std::uint32_t k = 0; k < node.count; ++k) {
+                    node.box_lo = glm::min(node.box_lo, tree.nodes[node.first + k].box_lo);
+                    node.box_hi = glm::max(node.box_hi, tree.nodes[node.first + k].box_hi);
+                }
             }
             tree.nodes.push_back(node);
+            next_first[j] = first_code[b];
+            next_last[j] = last_code[e - 1];
         }
+        below_first = tree.level_first.back();
+        if (groups <= 1) break;
+        first_code = std::move(next_first);
+        last_code = std::move(next_last);
     }
     return tree;
 }

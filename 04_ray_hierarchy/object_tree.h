@@ -5,9 +5,12 @@
 //
 //   1. Morton code of each triangle's sphere centre in a grid of cubic cells over the scene box (10 bits per axis);
 //   2. the triangles sorted by code (the shared radix sort on the GPU; stable, so equal codes keep id order);
-//   3. level 1: clusters of kClusterSize consecutive sorted triangles; level l > 1: node j bounds nodes
-//      [j B, (j + 1) B) of level l - 1 (B = kObjectBranching), up to a single root. The same implicit layout as the
-//      ray hierarchy's levels, over space instead of over rays.
+//   3. level 1: clusters of up to kClusterSize consecutive sorted triangles; level l > 1: nodes bounding up to
+//      B = kObjectBranching consecutive nodes of level l - 1, up to a single root. The groups follow the codes'
+//      prefixes (group_heads below: the largest subtrees of at most B nodes of the binary radix tree the sorted codes
+//      define, Karras 2012), so a node never spans a jump of the Morton curve: until 2026-12-05 every B consecutive
+//      nodes made one, and a group straddling two distant stretches of the curve bounded the space between them
+//      (TransmissionTest: 268 single-ray node tests a reflection ray, 94 with these groups; docs/benchmarks.md).
 //
 // The traversal then works on pairs (ray node, object node): a pair whose cone-swept sphere misses the object's
 // sphere is dropped for every ray and triangle below both; a surviving pair splits one side (the larger: see
@@ -34,8 +37,9 @@ namespace rt {
 enum class ObjectMode { triangles, meshes, tree };
 const char* object_mode_name(ObjectMode mode);
 
-constexpr std::uint32_t kClusterSize = 4;        // triangles per leaf of the tree
-constexpr std::uint32_t kObjectBranching = 4;    // children per node above the leaves
+constexpr std::uint32_t kClusterSize = 4;        // triangles per leaf of the tree, at most
+constexpr std::uint32_t kObjectBranching = 4;    // children per node above the leaves, at most
+static_assert(kClusterSize == kObjectBranching, "group_heads and ot_build.comp group every level alike");
 constexpr unsigned kMortonAxisBits = 10;         // per axis: 2^30 cells
 
 // One object node, as on the GPU (std430 RhObject, 64 bytes). Level 1 nodes bound triangles: order[first + k] for
@@ -64,6 +68,20 @@ float morton_scale(glm::vec3 lo, glm::vec3 hi);
 // 30-bit Morton code of p (x above y above z at each level), cells clamped to the grid; NaN goes to cell 0.
 std::uint32_t morton_code(glm::vec3 p, glm::vec3 lo, float scale);
 
+// How far apart two neighbouring nodes of a level are on the Morton curve, for group_heads: 33..64 when their codes
+// differ (32 + the number of the highest bit they differ in, counting from 1), else 1..32 from their positions k and
+// k + 1 (equal codes are split as the radix tree splits them, by index; ot_build.comp: ot_strength).
+std::uint32_t boundary_strength(std::uint32_t last_code, std::uint32_t next_first_code, std::uint32_t k);
+// The groups of one level: the first node of each (in order, from 0) of the nodes whose codes span
+// [first_code[i], last_code[i]], sorted. A boundary is cut when the subtree of the strengths' Cartesian tree it
+// splits (ties to the left) holds more than kObjectBranching nodes; a level the rule would not at least halve is
+// grouped every kObjectBranching nodes instead (codes spaced by powers of two would otherwise split off one node a
+// level). Each group has 1 to kObjectBranching nodes.
+// every_4: group every kObjectBranching nodes whatever the codes (the build's choice when the worst case of prefix
+// groups, a tree of n nodes over n triangles, would not fit the GPU's storage limit: GpuRayHierarchy::build_tree).
+std::vector<std::uint32_t> group_heads(const std::vector<std::uint32_t>& first_code,
+                                       const std::vector<std::uint32_t>& last_code, bool every_4 = false);
+
 // The sphere bounding spheres s[first + k] (through `order` when given), padded like every bound of the stage.
 glm::vec4 sphere_union(const glm::vec4* spheres, std::size_t count);
 glm::vec4 sphere_union(const std::vector<glm::vec4>& spheres, const std::uint32_t* order, std::uint32_t first,
@@ -72,7 +90,7 @@ glm::vec4 sphere_union(const std::vector<glm::vec4>& spheres, const std::uint32_
 // The tree over triangles with these bounding spheres (rh_triangle_sphere), in the scene box [lo, hi]; with the
 // triangles' vertices (3 per triangle) the nodes' boxes too, else every box is all space.
 ObjectTree build_object_tree(const std::vector<glm::vec4>& triangle_spheres, glm::vec3 lo, glm::vec3 hi,
-                             const std::vector<glm::vec3>& triangles = {});
+                             const std::vector<glm::vec3>& triangles = {}, bool every_4 = false);
 // `meshes`: one level of objects, runs [first, first + count) of triangles in id order.
 ObjectTree mesh_objects(const std::vector<glm::vec4>& triangle_spheres,
                         const std::vector<std::pair<std::uint32_t, std::uint32_t>>& runs);

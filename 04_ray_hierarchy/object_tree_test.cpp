@@ -182,6 +182,56 @@ TEST(ObjectTree, LeavesFollowMortonOrderStably) {
     }
 }
 
+// group_heads: the groups of one level follow the codes' prefixes, 1 to kObjectBranching nodes each.
+std::vector<std::uint32_t> heads_of(const std::vector<std::uint32_t>& codes) { return group_heads(codes, codes); }
+
+TEST(ObjectTree, GroupsNeverSpanAJumpOfTheMortonCurve) {
+    // Two clumps of 3 far apart on the curve: one group each (every 4 nodes would put node 3 with the first clump).
+    EXPECT_EQ(heads_of({0, 1, 2, 1u << 20, (1u << 20) + 1, (1u << 20) + 2}), (std::vector<std::uint32_t>{0, 3}));
+    // Four clumps of 2: the two nearer pairs of clumps share a group (their subtree holds 4 nodes).
+    EXPECT_EQ(heads_of({0, 1, 8, 9, 1u << 20, (1u << 20) + 1, (1u << 20) + 8, (1u << 20) + 9}),
+              (std::vector<std::uint32_t>{0, 4}));
+    // A group ends where the subtree of the strongest boundary inside 5 nodes would hold them all: 8 nodes in a row
+    // split at their middle (bit 2), then each half is one group.
+    EXPECT_EQ(heads_of({0, 1, 2, 3, 4, 5, 6, 7}), (std::vector<std::uint32_t>{0, 4}));
+    // Nodes spanning ranges of codes (upper levels): the boundary is between one's last and the next one's first.
+    EXPECT_EQ(group_heads({0, 2, 1u << 20, (1u << 20) + 4}, {1, 3, (1u << 20) + 2, (1u << 20) + 5}).size(), 1u);
+    EXPECT_EQ(group_heads({0, 2, 4, 6, 1u << 20}, {1, 3, 5, 7, (1u << 20) + 2}), (std::vector<std::uint32_t>{0, 4}));
+    EXPECT_TRUE(heads_of({}).empty());
+    EXPECT_EQ(heads_of({7}), (std::vector<std::uint32_t>{0}));
+}
+
+TEST(ObjectTree, GroupsHalveEveryLevelEvenWhenTheCodesSplitOffOneNodeAtATime) {
+    // Codes 2^k: every boundary is stronger than the one before, so the prefixes split one node off at a time and
+    // would make 27 groups of 30 nodes, a level that barely shrinks (30 levels for 30 triangles). Such a level is
+    // grouped every 4 nodes instead.
+    std::vector<std::uint32_t> powers;
+    for (std::uint32_t k = 0; k < 30; ++k) powers.push_back(1u << k);
+    std::vector<std::uint32_t> every4;
+    for (std::uint32_t k = 0; k < 30; k += 4) every4.push_back(k);
+    EXPECT_EQ(heads_of(powers), every4);
+    // Equal codes are split by position, as the radix tree splits them: groups of 4 from an aligned start.
+    EXPECT_EQ(heads_of(std::vector<std::uint32_t>(10, 5u)), (std::vector<std::uint32_t>{0, 4, 8}));
+    // Whatever the codes, groups hold 1 to 4 nodes and a level at least halves.
+    std::mt19937 g(11);
+    for (int trial = 0; trial < 200; ++trial) {
+        std::vector<std::uint32_t> codes(1 + g() % 300);
+        for (std::uint32_t& c : codes) c = trial % 2 ? g() % 64 : g() >> (g() % 32);
+        std::sort(codes.begin(), codes.end());
+        const std::vector<std::uint32_t> heads = heads_of(codes);
+        ASSERT_FALSE(heads.empty());
+        EXPECT_EQ(heads[0], 0u);
+        for (std::size_t j = 0; j < heads.size(); ++j) {
+            const std::uint32_t end = j + 1 < heads.size() ? heads[j + 1] : std::uint32_t(codes.size());
+            ASSERT_GT(end, heads[j]) << trial;
+            ASSERT_LE(end - heads[j], kObjectBranching) << trial;
+        }
+        if (codes.size() > 1) {
+            EXPECT_LE(2 * heads.size(), codes.size() + 1) << trial;
+        }
+    }
+}
+
 TEST(ObjectTree, NoPairThatHitsIsCulledOnTheAdversarialRaySets) {
     std::uint64_t culled = 0;
     for (const ray_sets::Case& c : ray_sets::all()) expect_no_hit_culled(c.name, trace_rays(c.rays), c.triangles, &culled);

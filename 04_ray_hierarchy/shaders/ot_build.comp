@@ -4,10 +4,19 @@
 //   0 codes     per triangle: the 30-bit Morton code of its sphere's centre (cubic cells over the scene box) and
 //               its id, for the shared radix sort (common/gpu/primitives/radix_sort.h), which sorts ids by code,
 //               stably;
-//   1 clusters  per node of level 1: the sphere of triangles rh_order[first, first + kClusterSize), and the box of
-//               their vertices;
-//   2 level     per node of an upper level: the sphere and the box of nodes [first, first + kObjectBranching) of the
-//               level below.
+// then per level (ot_level 1 = the clusters over the sorted triangles, then each level over the one below), its
+// groups (object_tree.cpp: group_heads) in three modes and a scan, nothing read back:
+//   3 cuts      per node of the level below (per triangle for level 1): 1 where a group starts (node 0, and after
+//               a boundary whose subtree of the codes' Cartesian tree holds more than 4 nodes), else 0; the host
+//               scans these flags in place (exclusive, the total to level word 0 of ot_codes);
+//   4 heads     per node below: the group it starts (the scan's value), or with the fallback (a level the rule would
+//               not halve) every 4th node; writes each group's first node and the level's size and first node;
+//   1 clusters  per group of level 1: the sphere of triangles rh_order[first, first + count), and the box of their
+//               vertices;
+//   2 level     per group of an upper level: the sphere and the box of nodes [first, first + count) below.
+// Modes 1 and 2 also write the codes each group spans, for the next level's cuts. The host dispatches every level a
+// tree of n triangles can have (each at most halves) with sizes bounded on the CPU; a level whose nodes below are
+// fewer than two is empty (size 0), and every pass of it returns at once.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 
@@ -15,19 +24,52 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = RH_BINDING_SPHERES) readonly buffer Spheres { vec4 rh_spheres[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) buffer Objects { RhObject rh_objects[]; };
-layout(std430, binding = RH_BINDING_KEYS) buffer Keys { uint ot_keys[]; };
+layout(std430, binding = RH_BINDING_KEYS) buffer Keys { uint ot_keys[]; };   // mode 0; after the sort, sorted
 layout(std430, binding = RH_BINDING_ORDER) buffer Order { uint rh_order[]; };
+// Modes 3 and 4: per node below, its cut flag and then (scanned in place) the number of groups starting before it.
+layout(std430, binding = RH_BINDING_PAIRS_OUT) buffer Groups { uint ot_groups[]; };
+// One buffer (a compute shader sees at most 16 storage blocks, and the scene's take most): first the levels' words,
+// 4 a vec4 (ot_level_word: [0] the scan's total, the groups the rule makes; per level l >= 1, [2l] its nodes and
+// [2l + 1] its node 0); then two halves of codes, the level below's from ot_codes_in and this level's from
+// ot_codes_out: per node, x and y the codes it spans (first, last), and for this level's groups z their first node
+// below (mode 4).
+layout(std430, binding = RH_BINDING_COUNTS) buffer Codes { uvec4 ot_codes[]; };
 
 uniform uint ot_mode;
-uniform uint ot_count;          // threads: triangles (0) or nodes of the level (1, 2)
-uniform uint ot_triangles;      // mode 1: triangles in all
-uniform uint ot_child_first;    // mode 2: the level below's node 0
-uniform uint ot_child_count;    // mode 2: nodes on the level below
-uniform uint ot_node_first;     // modes 1, 2: where this level's node 0 goes
-uniform uint ot_level;          // modes 1, 2: this level (1 = clusters)
-uniform uint ot_fanout;         // modes 1, 2: kClusterSize or kObjectBranching
+uniform uint ot_count;          // threads: triangles (0), nodes below (3, 4), a bound of the level's groups (1, 2)
+uniform uint ot_triangles;      // triangles in all
+uniform uint ot_level;          // modes 1-4: this level (1 = clusters)
+uniform uint ot_codes_in;       // modes 1-4: the level below's codes in ot_codes (upper levels)
+uniform uint ot_codes_out;      // modes 1, 2, 4: this level's
+uniform uint ot_every_4;        // mode 4: 1 groups every 4 nodes whatever the codes (group_heads' every_4)
 uniform vec3 ot_box_min;
 uniform float ot_scale;         // cells per unit (object_tree.cpp: morton_scale)
+
+#define OT_BRANCHING 4u         // object_tree.h: kObjectBranching (= kClusterSize)
+
+uint ot_level_word(uint w) { return ot_codes[w / 4u][w % 4u]; }
+void ot_set_level_word(uint w, uint v) { ot_codes[w / 4u][w % 4u] = v; }
+
+// Nodes on the level below this one (the triangles below level 1); 0 when that level is empty.
+uint ot_below() { return ot_level == 1u ? ot_triangles : ot_level_word(2u * (ot_level - 1u)); }
+uint ot_first_code(uint k) { return ot_level == 1u ? ot_keys[k] : ot_codes[ot_codes_in + k].x; }
+uint ot_last_code(uint k) { return ot_level == 1u ? ot_keys[k] : ot_codes[ot_codes_in + k].y; }
+
+// object_tree.cpp: boundary_strength, between nodes k and k + 1 below.
+uint ot_strength(uint k) {
+    const uint x = ot_last_code(k) ^ ot_first_code(k + 1u);
+    if (x != 0u) return 33u + uint(findMSB(x));
+    return 1u + uint(findMSB(k ^ (k + 1u)));
+}
+
+// object_tree.cpp: group_heads' rule for boundary k of m nodes: does its subtree hold more than OT_BRANCHING?
+bool ot_cut(uint k, uint m) {
+    const uint s = ot_strength(k);
+    uint left = 1u, right = 1u;
+    while (left <= OT_BRANCHING && k >= left && ot_strength(k - left) < s) ++left;
+    while (right <= OT_BRANCHING && k + right + 1u < m && ot_strength(k + right) <= s) ++right;
+    return left + right > OT_BRANCHING;
+}
 
 // Bits 0..9 of v to every third bit.
 uint ot_spread_bits(uint v) {
@@ -47,16 +89,19 @@ uint ot_cell(float x, float lo) {
 }
 
 // The sphere of spheres kids[0, count): the box of the spheres, its middle, the largest reach from there, padded
-// as rh_triangle_sphere (object_tree.cpp: sphere_union).
-vec4 ot_union(vec4 kids[16], uint count) {
+// as rh_triangle_sphere (object_tree.cpp: sphere_union). Loops of a constant OT_BRANCHING, so that the array stays
+// in registers (a dynamically indexed one is private memory for every invocation: on llvmpipe, most of the pass).
+vec4 ot_union(vec4 kids[OT_BRANCHING], uint count) {
     vec3 lo = vec3(RT_INFINITY), hi = vec3(-RT_INFINITY);
-    for (uint k = 0u; k < count; ++k) {
-        lo = min(lo, kids[k].xyz - kids[k].w);
-        hi = max(hi, kids[k].xyz + kids[k].w);
-    }
+    for (uint k = 0u; k < OT_BRANCHING; ++k)
+        if (k < count) {
+            lo = min(lo, kids[k].xyz - kids[k].w);
+            hi = max(hi, kids[k].xyz + kids[k].w);
+        }
     const vec3 m = 0.5 * lo + 0.5 * hi;
     float r = 0.0;
-    for (uint k = 0u; k < count; ++k) r = max(r, length(kids[k].xyz - m) + kids[k].w);
+    for (uint k = 0u; k < OT_BRANCHING; ++k)
+        if (k < count) r = max(r, length(kids[k].xyz - m) + kids[k].w);
     return vec4(m, r * (1.0 + RH_PAD) + RH_PAD * max(rh_max_abs(m), rh_max_abs(hi - lo)) + 1e-30);
 }
 
@@ -70,26 +115,54 @@ void main() {
         rh_order[i] = i;
         return;
     }
+    const uint m = ot_below();
+    const bool grouped = ot_level == 1u || m > 1u;   // one node below is the root: no level above it
+    if (ot_mode == 3u) {
+        ot_groups[i] = grouped && i < m && (i == 0u || ot_cut(i - 1u, m)) ? 1u : 0u;
+        return;
+    }
+    if (ot_mode == 4u) {
+        const uint made = ot_level_word(0u);
+        const bool fallback = ot_every_4 == 1u || 2u * made > m;   // group_heads: a level is at least halved
+        const uint groups = !grouped ? 0u : fallback ? (m + OT_BRANCHING - 1u) / OT_BRANCHING : made;
+        if (i == 0u) {
+            ot_set_level_word(2u * ot_level, groups);
+            ot_set_level_word(2u * ot_level + 1u, ot_level == 1u ? 0u
+                                                                 : ot_level_word(2u * ot_level - 1u) +
+                                                                       ot_level_word(2u * ot_level - 2u));
+        }
+        if (!grouped || i >= m) return;
+        const uint before = ot_groups[i];
+        const bool head = fallback ? i % OT_BRANCHING == 0u
+                                   : (i + 1u < m ? ot_groups[i + 1u] > before : made > before);
+        if (head) ot_codes[ot_codes_out + (fallback ? i / OT_BRANCHING : before)].z = i;
+        return;
+    }
+    // Modes 1 and 2: group i of this level.
+    const uint groups = ot_level_word(2u * ot_level);
+    if (i >= groups) return;
+    const uint b = ot_codes[ot_codes_out + i].z, e = i + 1u < groups ? ot_codes[ot_codes_out + i + 1u].z : m;
     RhObject o;
     o.level = ot_level;
     o.pad = 0u;
-    vec4 kids[16];
+    o.count = e - b;
+    vec4 kids[OT_BRANCHING];
     vec3 lo = vec3(RT_INFINITY), hi = vec3(-RT_INFINITY);
     if (ot_mode == 1u) {
-        o.first = i * ot_fanout;
-        o.count = min(ot_fanout, ot_triangles - o.first);
-        for (uint k = 0u; k < o.count; ++k) {
+        o.first = b;
+        for (uint k = 0u; k < OT_BRANCHING; ++k) {
+            if (k >= o.count) break;
             const uint t = rh_order[o.first + k];
             kids[k] = rh_spheres[t];
-            vec3 a, b, c;
-            rh_load_triangle(t, a, b, c);
-            lo = min(lo, min(a, min(b, c)));
-            hi = max(hi, max(a, max(b, c)));
+            vec3 a, bb, c;
+            rh_load_triangle(t, a, bb, c);
+            lo = min(lo, min(a, min(bb, c)));
+            hi = max(hi, max(a, max(bb, c)));
         }
     } else {
-        o.first = ot_child_first + i * ot_fanout;
-        o.count = min(ot_fanout, ot_child_count - i * ot_fanout);
-        for (uint k = 0u; k < o.count; ++k) {
+        o.first = ot_level_word(2u * ot_level - 1u) + b;
+        for (uint k = 0u; k < OT_BRANCHING; ++k) {
+            if (k >= o.count) break;
             const RhObject child = rh_objects[o.first + k];
             kids[k] = child.sphere;
             lo = min(lo, child.box_lo.xyz);
@@ -99,5 +172,6 @@ void main() {
     o.box_lo = vec4(lo, 0.0);
     o.box_hi = vec4(hi, 0.0);
     o.sphere = ot_union(kids, o.count);
-    rh_objects[ot_node_first + i] = o;
+    rh_objects[ot_level_word(2u * ot_level + 1u) + i] = o;
+    ot_codes[ot_codes_out + i].xy = uvec2(ot_first_code(b), ot_last_code(e - 1u));
 }

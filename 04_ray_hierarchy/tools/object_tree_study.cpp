@@ -1,14 +1,16 @@
-// How many object-tree node tests a single ray makes, and what would lower it: a study on the CPU twin
+// How many object-tree node tests a single ray makes, and what would lower them: a study on the CPU twin
 // (object_tree.h), for docs/benchmarks.md ("Stage 04: where the node tests go"). Not part of the stage.
 //
-// For every reflection and refraction ray of a --dump-hits file (shadow rays are left out: the dump holds no
-// occluder distance), the tree is walked top-down the way rh_cull.comp walks it for a single ray: each child of a
-// node that passed is tested (rh_ray_may_hit, then rh_ray_box_test) and counted. Four figures per ray kind:
-//   tree          the stage's object tree, the ray's whole length (what level 0 of the traversal costs today);
-//   tree, to hit  the same with tmax cut to the ray's closest hit (what a traversal that knew it would save);
+// For every reflection, refraction and transparency ray of a --dump-hits file (shadow rays are left out: the dump
+// holds no occluder distance), a tree is walked top-down the way rh_cull.comp walks it for a single ray: each child of
+// a node that passed is tested (rh_ray_may_hit, then rh_ray_box_test) and counted. Per ray kind, node tests per ray:
+//   tree          the stage's object tree (groups at the Morton codes' prefixes), over the ray's whole length (what
+//                 level 0 of the traversal costs);
+//   to hit        the same with tmax cut to the ray's closest hit (what a traversal that knew it would save);
+//   every 4       the tree grouped every 4 nodes whatever the codes (the stage's until 2026-12-05, and its choice on
+//                 a GPU whose storage limit the prefix groups' worst case would pass);
 //   median        a 4-wide tree split top-down at the median of the widest centroid axis (two splits a node,
-//                 leaves of at most 4 triangles, boxes of their vertices, spheres around the boxes);
-//   median, to hit.
+//                 leaves of at most 4 triangles, boxes of their vertices, spheres around the boxes).
 //     build/bin/04_ray_hierarchy --scene S --width 160 --height 120 --dump-hits h.bin --out o.png
 //     build/bin/object_tree_study S h.bin        (S a glTF file; builtin scenes: --export S.glb first)
 #include <algorithm>
@@ -124,6 +126,7 @@ int main(int argc, char** argv) {
         for (std::size_t t = 0; t < scene.triangle_count(); ++t)
             spheres.push_back(rh_triangle_sphere(v[3 * t], v[3 * t + 1], v[3 * t + 2]));
         const ObjectTree tree = build_object_tree(spheres, scene.bounds.lo, scene.bounds.hi, v);
+        const ObjectTree every_4 = build_object_tree(spheres, scene.bounds.lo, scene.bounds.hi, v, true);
         MedianTree median{v, {}};
         std::vector<std::uint32_t> ids(scene.triangle_count());
         std::iota(ids.begin(), ids.end(), 0u);
@@ -135,7 +138,9 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "object_tree_study: %s: not a --dump-hits file\n", argv[2]);
             return 2;
         }
-        struct Sums { std::uint64_t rays = 0, tree = 0, tree_hit = 0, median = 0, median_hit = 0; } sums[kRayKinds];
+        struct Sums {
+            std::uint64_t rays = 0, tree = 0, tree_hit = 0, every_4 = 0, every_4_hit = 0, median = 0, median_hit = 0;
+        } sums[kRayKinds];
         HitRecord r;
         while (in.read(reinterpret_cast<char*>(&r), sizeof r)) {
             const RayKind kind = ray_kind(r.kind_light);
@@ -147,21 +152,25 @@ int main(int argc, char** argv) {
             ++s.rays;
             s.tree += tree_tests(tree, o, d, INFINITY);
             s.tree_hit += tree_tests(tree, o, d, to_hit);
+            s.every_4 += tree_tests(every_4, o, d, INFINITY);
+            s.every_4_hit += tree_tests(every_4, o, d, to_hit);
             if (!median.nodes.empty()) {
                 s.median += median.tests(o, d, INFINITY);
                 s.median_hit += median.tests(o, d, to_hit);
             }
         }
-        std::printf("%s: %zu triangles, object tree %u levels\n", argv[1], scene.triangle_count(), tree.levels());
-        std::printf("| rays | count | tree | tree, to hit | median | median, to hit |\n");
-        std::printf("|---|---:|---:|---:|---:|---:|\n");
+        std::printf("%s: %zu triangles; the tree %u levels, %zu nodes; every 4: %u levels, %zu nodes\n", argv[1],
+                    scene.triangle_count(), tree.levels(), tree.nodes.size(), every_4.levels(), every_4.nodes.size());
+        std::printf("| rays | count | tree | tree, to hit | every 4 | every 4, to hit | median | median, to hit |\n");
+        std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
         for (int k = 0; k < kRayKinds; ++k) {
             const Sums& s = sums[k];
             if (s.rays == 0) continue;
             const double n = double(s.rays);
-            std::printf("| %s | %llu | %.1f | %.1f | %.1f | %.1f |\n", ray_kind_name(RayKind(k)),
+            std::printf("| %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f |\n", ray_kind_name(RayKind(k)),
                         static_cast<unsigned long long>(s.rays), double(s.tree) / n, double(s.tree_hit) / n,
-                        double(s.median) / n, double(s.median_hit) / n);
+                        double(s.every_4) / n, double(s.every_4_hit) / n, double(s.median) / n,
+                        double(s.median_hit) / n);
         }
     } catch (const std::exception& e) {   // the scene's file: missing, malformed or too large (bad input)
         std::fprintf(stderr, "object_tree_study: %s\n", e.what());
