@@ -112,26 +112,28 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     tree_codes_.upload(zero.data(), zero.size() * 4);
     tree_.set("ot_triangles", n);
     tree_.set("ot_every_4", tree_every_4_ ? 1u : 0u);
+    const auto bind = [&] {   // again after each scan, which binds its own buffers
+        order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
+        spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
+        objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
+        keys_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
+        tree_groups_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
+        tree_codes_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
+    };
     for (std::size_t l = 0; l < sizes.size(); ++l) {
         const std::uint32_t below = l == 0 ? n : sizes[l - 1];
-        const auto bind = [&] {
-            order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
-            spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
-            objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-            keys_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
-            tree_groups_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
-            tree_codes_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
-        };
         bind();
         tree_.set("ot_level", unsigned(l + 1));
         tree_.set("ot_codes_in", kLevelVec4s + unsigned((l + 1) % 2) * half);
         tree_.set("ot_codes_out", kLevelVec4s + unsigned(l % 2) * half);
-        tree_.set("ot_mode", 3u);
         tree_.set("ot_count", below);
-        tree_.dispatch_threads(below);
-        barrier();
-        scan_.exclusive_flags(tree_groups_, tree_groups_, below, &tree_codes_, 0);   // the total to level word 0
-        bind();
+        if (!tree_every_4_) {   // the cuts and their scan (every 4 nodes, mode 4 needs neither)
+            tree_.set("ot_mode", 3u);
+            tree_.dispatch_threads(below);
+            barrier();
+            scan_.exclusive_flags(tree_groups_, tree_groups_, below, &tree_codes_, 0);   // the total to level word 0
+            bind();
+        }
         tree_.set("ot_mode", 4u);
         tree_.dispatch_threads(below);
         barrier();

@@ -93,7 +93,7 @@ std::vector<std::uint32_t> group_heads(const std::vector<std::uint32_t>& first_c
     std::vector<std::uint32_t> heads;
     if (m == 0) return heads;
     heads.push_back(0);
-    for (std::uint32_t k = 0; k + 1 < m; ++k) {
+    for (std::uint32_t k = 0; k + 1 < m && !every_4; ++k) {
         const std::uint32_t s = strength(k);
         std::uint32_t left = 1, right = 1;   // nodes of the subtree on each side of the boundary
         while (left <= kObjectBranching && k >= left && strength(k - left) < s) ++left;

@@ -8,7 +8,8 @@
 // groups (object_tree.cpp: group_heads) in three modes and a scan, nothing read back:
 //   3 cuts      per node of the level below (per triangle for level 1): 1 where a group starts (node 0, and after
 //               a boundary whose subtree of the codes' Cartesian tree holds more than 4 nodes), else 0; the host
-//               scans these flags in place (exclusive, the total to level word 0 of ot_codes);
+//               scans these flags in place (exclusive, the total to level word 0 of ot_codes); neither runs
+//               with ot_every_4;
 //   4 heads     per node below: the group it starts (the scan's value), or with the fallback (a level the rule would
 //               not halve) every 4th node; writes each group's first node and the level's size and first node;
 //   1 clusters  per group of level 1: the sphere of triangles rh_order[first, first + count), and the box of their
@@ -132,10 +133,12 @@ void main() {
                                                                        ot_level_word(2u * ot_level - 2u));
         }
         if (!grouped || i >= m) return;
+        if (fallback) {   // with ot_every_4 the host ran neither mode 3 nor the scan: the flags are not this level's
+            if (i % OT_BRANCHING == 0u) ot_codes[ot_codes_out + i / OT_BRANCHING].z = i;
+            return;
+        }
         const uint before = ot_groups[i];
-        const bool head = fallback ? i % OT_BRANCHING == 0u
-                                   : (i + 1u < m ? ot_groups[i + 1u] > before : made > before);
-        if (head) ot_codes[ot_codes_out + (fallback ? i / OT_BRANCHING : before)].z = i;
+        if (i + 1u < m ? ot_groups[i + 1u] > before : made > before) ot_codes[ot_codes_out + before].z = i;
         return;
     }
     // Modes 1 and 2: group i of this level.
