@@ -52,7 +52,7 @@ void RadixSort::run(Buffer& keys, Buffer& values, std::size_t n, const Buffer* g
     std::size_t window = window_override_ ? window_override_ : max_storage_block_bytes() / 4 / kSortTile * kSortTile;
     if (window == 0 || window % kSortTile != 0 || (window * 4) % std::size_t(std::max(align, 1)) != 0)
         throw std::logic_error("RadixSort: window of " + std::to_string(window) + " elements is not whole tiles");
-    // The digit counts are one array read by the scan, so they must fit one block: 16 uints per tile.
+    // The digit counts are one array read by the scan, so they must fit one block: kRadix (64) uints per tile.
     check_storage_block("RadixSort counts", kRadix * tiles_for(n));
 
     keys_tmp_.reserve(n * 4);

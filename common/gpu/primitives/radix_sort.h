@@ -1,14 +1,22 @@
 // Stable key-value radix sort of uint32 keys and values on the GPU (least significant digit first; Satish, Harris
-// and Garland 2009 in its simplest form). Each pass sorts by RADIX_BITS = 4 bits of the key:
-//   1. count  (radix_count.comp):   per tile of kSortTile keys, how many keys have each of the 16 digits;
+// and Garland 2009 in its simplest form). Each pass sorts by RADIX_BITS = 6 bits of the key:
+//   1. count  (radix_count.comp):   per tile of kSortTile keys, how many keys have each of the 64 digits;
 //   2. scan   (Scan::exclusive):    of those counts, digit-major: where each (digit, tile) starts in the output;
 //   3. scatter (radix_scatter.comp): each key and its value to that start plus its rank among the tile's keys of
 //                                    the same digit, so keys with equal digits keep their order (stable).
-// ceil(key_bits / 4) passes ping-pong between the caller's buffers and two kept scratch buffers. Arrays of at most
-// kScatterScanTiles tiles skip step 2: each scatter work group sums the counts it needs (at most 16 x 64), which
-// saves a dispatch per pass (stage 05 sorts ~16 short arrays a frame, 8 passes each).
+// ceil(key_bits / 6) passes ping-pong between the caller's buffers and two kept scratch buffers. Arrays of at most
+// kScatterScanTiles tiles skip step 2: each scatter work group sums the counts it needs (at most 64 x 64), which
+// saves a dispatch per pass (stage 05 sorts ~16 short arrays a frame, 6 passes each).
 //
-// Used by stage 03 (sorting (cell, triangle) pairs) and stage 05 (ray chunks). Needs a current context when
+// Why 6 bits and 64 threads of 64 keys: the scatter's rank table (digits x threads) must fit shared memory (32 KiB on
+// llvmpipe: 64 x 64 uints is 16 KiB), and a tile's threads share its barriers; on llvmpipe a work group runs on one
+// core, so fewer threads each with more keys cost fewer barrier rounds, and 6-bit digits take a 32-bit key in 6
+// passes instead of 8. Against 4 bits and 256 threads of 16 keys (docs/benchmarks.md, "GPU radix sort"): 1.1-2.9x
+// faster from 1K to 4M keys; tiles of 2048 keys were slower, of 8192 no faster. Chosen on llvmpipe, where CI and
+// most machines here run; on a hardware GPU, where 64-thread groups hide less memory latency, not yet measured.
+//
+// Used by stage 03 (sorting (cell, triangle) pairs), stage 04 (the object tree's Morton codes) and stage 05 (ray
+// chunks). Needs a current context when
 // constructed; calls only enqueue GPU work and end with a memory barrier, like Scan.
 //
 // Any n up to 2^32 - 1: arrays larger than one shader storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, llvmpipe
@@ -24,7 +32,7 @@
 namespace rt::gpu {
 
 constexpr std::size_t kSortTile = 4096;   // keys per work group (radix_common.glsl: SORT_TILE)
-constexpr unsigned kRadixBits = 4;        // radix_common.glsl: RADIX_BITS
+constexpr unsigned kRadixBits = 6;        // radix_common.glsl: RADIX_BITS
 constexpr std::size_t kScatterScanTiles = 64;   // radix_common.glsl: SCATTER_SCAN_TILES
 
 class RadixSort {

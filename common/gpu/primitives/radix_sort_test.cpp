@@ -61,10 +61,10 @@ void expect_sorted_like_std(RadixSort& sort, const Pairs& in, unsigned key_bits,
     EXPECT_EQ(got.values, expected.values) << what << ", n = " << in.keys.size() << ", key_bits = " << key_bits;
 }
 
-// Lengths around the work group (256) and tile (kSortTile = 4096) sizes, many tiles with a partial last one, and
-// around the most tiles whose counts the scatter scans itself (kScatterScanTiles; above it, the scan's pass).
-const std::size_t kLengths[] = {2, 3, 255, 256, 257, 4095, 4096, 4097, 100003, kScatterScanTiles * kSortTile,
-                                kScatterScanTiles * kSortTile + 1};
+// Lengths around the work group (64 threads), 256 and tile (kSortTile = 4096) sizes, many tiles with a partial last
+// one, and around the most tiles whose counts the scatter scans itself (kScatterScanTiles; above it, the scan's pass).
+const std::size_t kLengths[] = {2, 3, 63, 64, 65, 255, 256, 257, 4095, 4096, 4097, 100003,
+                                kScatterScanTiles * kSortTile, kScatterScanTiles * kSortTile + 1};
 
 TEST(GpuRadixSort, RandomKeysMatchStdStableSort) {
     test_context();
@@ -87,13 +87,14 @@ TEST(GpuRadixSort, AllEqualSortedAndReverseSortedKeys) {
     }
 }
 
-// key_bits < 32 sorts by the low bits only: the high bits ride along and equal low bits keep their order. Odd
-// counts of bits make the last pass narrower than 4 bits, and an odd count of passes ends in the scratch buffers.
+// key_bits < 32 sorts by the low bits only: the high bits ride along and equal low bits keep their order. Counts of
+// bits that are not a multiple of kRadixBits (6) make the last pass narrower, and an odd count of passes (1, 3, 5)
+// ends in the scratch buffers.
 TEST(GpuRadixSort, KeyBitsSortOnlyTheLowBits) {
     test_context();
     RadixSort sort;
     const Pairs in = with_index_values(random_keys(50001, 5));
-    for (unsigned key_bits : {1u, 3u, 4u, 7u, 8u, 12u, 17u, 31u})
+    for (unsigned key_bits : {1u, 3u, 4u, 6u, 7u, 8u, 12u, 17u, 30u, 31u})
         expect_sorted_like_std(sort, in, key_bits, "random high bits");
     // Keys using only some bits, sorted by all 32.
     Pairs few = in;
