@@ -77,8 +77,11 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     barrier();
     radix_->sort(keys_, order_, n, 3 * kMortonAxisBits);
     // The levels (ot_build.comp modes 3, 4, 1/2 and a scan each): their sizes are the GPU's, so every level a tree of
-    // n triangles can have is dispatched, each sized by a bound (a level at least halves the one below, group_heads),
-    // and the sizes are read back once, at the end (one sync a frame, outside every batch).
+    // n triangles can have is dispatched, and the sizes are read back once, at the end (one sync a frame, outside
+    // every batch). Modes 3 and the scan run over a bound of the nodes below (a level at least halves the one below,
+    // group_heads); mode 4 writes the level's size and, from it, the dispatch of mode 1/2 over its groups and of the
+    // next level's mode 4 over the same nodes, so those run over the GPU's counts (at 1M triangles the bounds had
+    // twice to three times the threads).
     // The prefix groups' worst case is a tree of about n nodes (64 bytes a triangle); where that passes the GPU's
     // storage limit (llvmpipe: 128 MiB, 2M triangles), every 4 nodes make a group (about n / 3 nodes), as before
     // 2026-12-05.
@@ -103,15 +106,18 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     gpu::check_storage_block("04_ray_hierarchy: the object tree", std::size_t(total_bound) * sizeof(ObjectNode) / 4);
     objects_buf_.reserve(std::size_t(total_bound) * sizeof(ObjectNode));
     tree_groups_.reserve(std::size_t(n) * 4);
-    // ot_build.comp's ot_codes: the levels' words, then two halves of codes (uvec4s), one for the level below and
-    // one for the level being built, alternately.
-    constexpr std::uint32_t kLevelVec4s = (2 + 2 * kMaxObjectLevels + 3) / 4;
+    // ot_build.comp's ot_codes: the levels' words, each level's dispatch (3 words from kArgsWord), then two halves of
+    // codes (uvec4s), one for the level below and one for the level being built, alternately.
+    constexpr auto kArgsWord = std::uint32_t(4 * ((2 + 2 * kMaxObjectLevels + 3) / 4));
+    constexpr auto kLevelVec4s = std::uint32_t((kArgsWord + 3 * kMaxObjectLevels + 3) / 4);
+    const auto args_offset = [&](std::size_t l) { return (kArgsWord + 3 * l) * sizeof(std::uint32_t); };
     const std::uint32_t half = sizes[0];
     tree_codes_.reserve((std::size_t(kLevelVec4s) + 2 * std::size_t(half)) * 16);
     const std::vector<std::uint32_t> zero(4 * kLevelVec4s, 0u);
     tree_codes_.upload(zero.data(), zero.size() * 4);
     tree_.set("ot_triangles", n);
     tree_.set("ot_every_4", tree_every_4_ ? 1u : 0u);
+    tree_.set("ot_args_word", kArgsWord);
     const auto bind = [&] {   // again after each scan, which binds its own buffers
         order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
         spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
@@ -135,11 +141,14 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
             bind();
         }
         tree_.set("ot_mode", 4u);
-        tree_.dispatch_threads(below);
+        if (l == 0)
+            tree_.dispatch_threads(below);
+        else   // the nodes below: the level below's groups, as its mode 4 wrote them
+            tree_.dispatch_indirect(tree_codes_, args_offset(l - 1));
         barrier();
         tree_.set("ot_mode", l == 0 ? 1u : 2u);
         tree_.set("ot_count", sizes[l]);
-        tree_.dispatch_threads(sizes[l]);
+        tree_.dispatch_indirect(tree_codes_, args_offset(l));
         barrier();
     }
     const std::vector<std::uint32_t> levels = tree_codes_.download<std::uint32_t>(2 + 2 * sizes.size());

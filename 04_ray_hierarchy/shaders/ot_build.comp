@@ -11,13 +11,14 @@
 //               scans these flags in place (exclusive, the total to level word 0 of ot_codes); neither runs
 //               with ot_every_4;
 //   4 heads     per node below: the group it starts (the scan's value), or with the fallback (a level the rule would
-//               not halve) every 4th node; writes each group's first node and the level's size and first node;
+//               not halve) every 4th node; writes each group's first node and the level's size and first node,
+//               and the dispatch of modes 1/2 over the level's groups (the next level's mode 4 runs over them too);
 //   1 clusters  per group of level 1: the sphere of triangles rh_order[first, first + count), and the box of their
 //               vertices;
 //   2 level     per group of an upper level: the sphere and the box of nodes [first, first + count) below.
 // Modes 1 and 2 also write the codes each group spans, for the next level's cuts. The host dispatches every level a
-// tree of n triangles can have (each at most halves) with sizes bounded on the CPU; a level whose nodes below are
-// fewer than two is empty (size 0), and every pass of it returns at once.
+// tree of n triangles can have (each at most halves): modes 3 and the scan over a bound of the nodes below, modes 4
+// (above level 1) and 1/2 over the GPU's counts; a level whose nodes below are fewer than two is empty (size 0).
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 
@@ -31,18 +32,20 @@ layout(std430, binding = RH_BINDING_ORDER) buffer Order { uint rh_order[]; };
 layout(std430, binding = RH_BINDING_PAIRS_OUT) buffer Groups { uint ot_groups[]; };
 // One buffer (a compute shader sees at most 16 storage blocks, and the scene's take most): first the levels' words,
 // 4 a vec4 (ot_level_word: [0] the scan's total, the groups the rule makes; per level l >= 1, [2l] its nodes and
-// [2l + 1] its node 0); then two halves of codes, the level below's from ot_codes_in and this level's from
-// ot_codes_out: per node, x and y the codes it spans (first, last), and for this level's groups z their first node
-// below (mode 4).
+// [2l + 1] its node 0; from ot_args_word, 3 words a level: the dispatch of its modes 1/2, which
+// glDispatchComputeIndirect reads from this buffer); then two halves of codes, the level below's from ot_codes_in
+// and this level's from ot_codes_out: per node, x and y the codes it spans (first, last), and for this level's
+// groups z their first node below (mode 4).
 layout(std430, binding = RH_BINDING_COUNTS) buffer Codes { uvec4 ot_codes[]; };
 
 uniform uint ot_mode;
-uniform uint ot_count;          // threads: triangles (0), nodes below (3, 4), a bound of the level's groups (1, 2)
+uniform uint ot_count;          // triangles (0), a bound of the nodes below (3, 4) or of the level's groups (1, 2)
 uniform uint ot_triangles;      // triangles in all
 uniform uint ot_level;          // modes 1-4: this level (1 = clusters)
 uniform uint ot_codes_in;       // modes 1-4: the level below's codes in ot_codes (upper levels)
 uniform uint ot_codes_out;      // modes 1, 2, 4: this level's
 uniform uint ot_every_4;        // mode 4: 1 groups every 4 nodes whatever the codes (group_heads' every_4)
+uniform uint ot_args_word;      // mode 4: level l's dispatch goes to level words ot_args_word + 3 (l - 1) + 0..2
 uniform vec3 ot_box_min;
 uniform float ot_scale;         // cells per unit (object_tree.cpp: morton_scale)
 
@@ -127,6 +130,12 @@ void main() {
         const bool fallback = ot_every_4 == 1u || 2u * made > m;   // group_heads: a level is at least halved
         const uint groups = !grouped ? 0u : fallback ? (m + OT_BRANCHING - 1u) / OT_BRANCHING : made;
         if (i == 0u) {
+            // Work groups of 64 threads for `groups` threads, 2D beyond 65535 (Program::dispatch_threads).
+            const uint work_groups = (groups + 63u) / 64u, rows = (work_groups + 65534u) / 65535u;
+            const uint args = ot_args_word + 3u * (ot_level - 1u);
+            ot_set_level_word(args, min(work_groups, 65535u));
+            ot_set_level_word(args + 1u, rows);
+            ot_set_level_word(args + 2u, 1u);
             ot_set_level_word(2u * ot_level, groups);
             ot_set_level_word(2u * ot_level + 1u, ot_level == 1u ? 0u
                                                                  : ot_level_word(2u * ot_level - 1u) +
