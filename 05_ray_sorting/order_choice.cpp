@@ -136,14 +136,14 @@ void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer
 }
 
 // The leaves' radii in width units of the batch's diagonal (the frame's), summed into costs_ words 6 and 7
-// (order_cost.comp, oc_mode 1).
+// (order_cost.comp, oc_mode 1: a thread sums kOrderLeavesPerThread leaves).
 void GpuOrderChoice::measure_leaves(float diagonal) {
     const std::uint32_t zero[2] = {};
     costs_.upload(zero, sizeof zero, 6 * 4);
     cost_.set("oc_mode", 1u);
     cost_.set("oc_slot", 3u);
     cost_.set("oc_diagonal", diagonal);
-    cost_.dispatch_threads(leaf_count_);
+    cost_.dispatch_threads((std::size_t(leaf_count_) + kOrderLeavesPerThread - 1) / kOrderLeavesPerThread);
     barrier();
     leaves_measured_ = true;
 }

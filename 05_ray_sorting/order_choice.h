@@ -47,6 +47,9 @@ std::uint32_t order_radius_units(float radius, float diagonal);
 std::uint32_t order_width_cap(std::uint64_t radius_units_sum, std::uint32_t leaves);
 std::uint32_t order_width_cap(const std::vector<glm::vec4>& leaf_spheres, float diagonal);
 constexpr auto kOrderNoCap = std::uint32_t(kOrderMaxWidth * kOrderWidthUnits);
+// Leaves one thread of order_cost.comp's oc_mode 1 sums (OC_LEAVES_PER_THREAD): on llvmpipe a pass costs about the
+// same per thread whatever the thread does, and the object tree of 1M triangles has about 300K leaves.
+constexpr std::uint32_t kOrderLeavesPerThread = 16;
 
 // The summed width of the level-1 nodes over rays[order[0..n)] taken B at a time (order empty: queue order), each
 // node's width at most `cap`.

@@ -6,7 +6,8 @@
 // cut to an eighth of the scene's diagonal (order_choice.glsl: OC_REACH). Level 1 carries the traversal's cost: its
 // width decides how many (ray, triangle) pairs reach the leaves.
 // Each width is capped by the leaves' mean diameter (order_choice.glsl: oc_width_cap), which oc_mode 1 measures once
-// per frame: the same pass sums the leaves' radii (thread g: leaf g) into oc_cost[6], [7].
+// per frame: the same pass sums the leaves' radii (thread g: leaves [16 g, 16 g + 16), OC_LEAVES_PER_THREAD) into
+// oc_cost[6], [7].
 // Widths are summed in fixed point (1/4096 of the diagonal per unit) as a 64-bit counter, first per work group in
 // shared memory, then one atomic add per group, so the sum (and the choice) does not depend on the order threads run.
 #include "04_ray_hierarchy/shaders/rh_common.glsl"
@@ -30,6 +31,8 @@ uniform uint oc_leaf_stride; // vec4s from one leaf's sphere to the next
 
 shared uint oc_lo[64], oc_hi[64];
 
+#define OC_LEAVES_PER_THREAD 16u   // order_choice.h: kOrderLeavesPerThread (16 x the largest unit fit a uint)
+
 // The fixed-point width of level-1 node g.
 uint oc_width(uint g) {
     const uint first = g * oc_branching;
@@ -48,7 +51,12 @@ uint oc_width(uint g) {
 void main() {
     const uint g = rt_global_index(), t = gl_LocalInvocationIndex;
     if (oc_mode == 1u) {
-        oc_lo[t] = g < oc_leaf_count ? oc_radius_units(oc_leaves[g * oc_leaf_stride].w, oc_diagonal) : 0u;
+        uint sum = 0u;
+        for (uint k = 0u; k < OC_LEAVES_PER_THREAD; ++k) {
+            const uint leaf = g * OC_LEAVES_PER_THREAD + k;
+            if (leaf < oc_leaf_count) sum += oc_radius_units(oc_leaves[leaf * oc_leaf_stride].w, oc_diagonal);
+        }
+        oc_lo[t] = sum;
     } else {
         const uint nodes = (oc_count + oc_branching - 1u) / oc_branching;
         oc_lo[t] = g < nodes ? min(oc_width(g), oc_width_cap(oc_cost[6], oc_cost[7], oc_leaf_count)) : 0u;
