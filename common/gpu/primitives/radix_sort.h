@@ -16,8 +16,8 @@
 // most machines here run; on a hardware GPU, where 64-thread groups hide less memory latency, not yet measured.
 //
 // Used by stage 03 (sorting (cell, triangle) pairs), stage 04 (the object tree's Morton codes) and stage 05 (ray
-// chunks). Needs a current context when
-// constructed; calls only enqueue GPU work and end with a memory barrier, like Scan.
+// chunks). Needs a current context when constructed; calls only enqueue GPU work and end with a memory barrier, like
+// Scan.
 //
 // Any n up to 2^32 - 1: arrays larger than one shader storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, llvmpipe
 // 128 MiB = 2^25 uints) are bound in windows of at most that size, so nothing is bound past the limit.

@@ -2,7 +2,7 @@
 // common/gpu/primitives/radix_sort.h.
 #define RADIX_BITS 6u                                // bits of the key sorted per pass
 #define RADIX (1u << RADIX_BITS)                     // buckets (digit values) per pass
-#define SORT_THREADS 64u
+#define SORT_THREADS 64u                             // at least RADIX: thread d < RADIX handles digit d
 #define SORT_ITEMS 64u                               // consecutive elements per thread
 #define SORT_TILE (SORT_THREADS * SORT_ITEMS)        // elements per work group
 #define SCATTER_SCAN_TILES 64u   // up to this many tiles, radix_scatter.comp scans the counts it needs itself
