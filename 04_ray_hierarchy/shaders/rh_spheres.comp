@@ -1,7 +1,8 @@
 #version 450 core
-// The per-frame geometry input of stage 04 (the only per-frame work on the scene: no structure over the
-// triangles). Mode 0: one thread per triangle writes its bounding sphere. Mode 1: one thread per object (a run of at
-// most 4096 consecutive triangles, ray_hierarchy_renderer.cpp) writes the sphere bounding its triangles' spheres.
+// The per-frame geometry input of stage 04. Mode 0: one thread per triangle writes its bounding sphere (with
+// --objects tree, ot_build.comp then builds the object tree over these spheres). Mode 1 (--objects meshes): one thread
+// per object (a run of at most 4096 consecutive triangles, ray_hierarchy_renderer.cpp) writes the sphere bounding its
+// triangles' spheres.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 
