@@ -22,7 +22,8 @@
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 
-layout(local_size_x = 64) in;
+#define OT_THREADS 64u
+layout(local_size_x = OT_THREADS) in;
 
 layout(std430, binding = RH_BINDING_SPHERES) readonly buffer Spheres { vec4 rh_spheres[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) buffer Objects { RhObject rh_objects[]; };
@@ -130,12 +131,11 @@ void main() {
         const bool fallback = ot_every_4 == 1u || 2u * made > m;   // group_heads: a level is at least halved
         const uint groups = !grouped ? 0u : fallback ? (m + OT_BRANCHING - 1u) / OT_BRANCHING : made;
         if (i == 0u) {
-            // Work groups of 64 threads for `groups` threads, 2D beyond 65535 (Program::dispatch_threads).
-            const uint work_groups = (groups + 63u) / 64u, rows = (work_groups + 65534u) / 65535u;
+            const uvec3 grid = rt_dispatch_size(groups, OT_THREADS);
             const uint args = ot_args_word + 3u * (ot_level - 1u);
-            ot_set_level_word(args, min(work_groups, 65535u));
-            ot_set_level_word(args + 1u, rows);
-            ot_set_level_word(args + 2u, 1u);
+            ot_set_level_word(args, grid.x);
+            ot_set_level_word(args + 1u, grid.y);
+            ot_set_level_word(args + 2u, grid.z);
             ot_set_level_word(2u * ot_level, groups);
             ot_set_level_word(2u * ot_level + 1u, ot_level == 1u ? 0u
                                                                  : ot_level_word(2u * ot_level - 1u) +

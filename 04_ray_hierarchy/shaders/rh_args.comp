@@ -1,5 +1,5 @@
 #version 450 core
-// One thread: the indirect dispatch arguments (work groups of 64, 1, 1) of a chunk whose length only the GPU knows
+// One thread: the indirect dispatch arguments (work groups of 64) of a chunk whose length only the GPU knows
 // (rh_info[rh_slot], counted by the previous step's rh_cull.comp), so the traversal goes on without a read-back.
 #include "rh_common.glsl"
 #include "rh_info.glsl"
@@ -12,7 +12,8 @@ uniform uint rh_slot;        // rh_info index of the chunk's length
 uniform uint rh_args_first;  // where its 3 arguments go
 
 void main() {
-    rh_args[rh_args_first] = (rh_info[rh_slot] + 63u) / 64u;
-    rh_args[rh_args_first + 1u] = 1u;
-    rh_args[rh_args_first + 2u] = 1u;
+    const uvec3 grid = rt_dispatch_size(rh_info[rh_slot], 64u);   // the passes' local size
+    rh_args[rh_args_first] = grid.x;
+    rh_args[rh_args_first + 1u] = grid.y;
+    rh_args[rh_args_first + 2u] = grid.z;
 }

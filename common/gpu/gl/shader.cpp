@@ -353,16 +353,17 @@ void Program::dispatch_indirect(const Buffer& args, std::size_t offset) const {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 
+glm::uvec3 Program::grid_for(std::size_t n, unsigned local_size) {
+    const std::size_t per_group = std::max(1u, local_size);
+    const std::size_t groups = n / per_group + (n % per_group != 0 ? 1 : 0);
+    if (groups <= kMaxGroupsX) return {unsigned(groups), 1u, 1u};
+    return {kMaxGroupsX, unsigned((groups + kMaxGroupsX - 1) / kMaxGroupsX), 1u};
+}
+
 void Program::dispatch_threads(std::size_t n) const {
     if (n == 0) return;
-    const std::size_t per_group = std::max(1u, local_size_.x);
-    const std::size_t groups = (n + per_group - 1) / per_group;
-    if (groups <= kMaxGroupsX) {
-        dispatch(unsigned(groups));
-    } else {
-        const std::size_t rows = (groups + kMaxGroupsX - 1) / kMaxGroupsX;
-        dispatch(kMaxGroupsX, unsigned(rows));
-    }
+    const glm::uvec3 grid = grid_for(n, local_size_.x);
+    dispatch(grid.x, grid.y, grid.z);
 }
 
 }  // namespace rt::gpu

@@ -119,6 +119,10 @@ public:
     // Enough work groups of local_size().x for n threads (1D shaders). Beyond 65535 groups the grid becomes 2D:
     // use rt_global_index() from compute.glsl to get the thread index and compare it with n.
     void dispatch_threads(std::size_t n) const;
+    // The grid dispatch_threads(n) uses for work groups of `local_size` threads: (groups, 1, 1), or beyond kMaxGroupsX
+    // groups kMaxGroupsX columns and as many rows as needed. compute.glsl's rt_dispatch_size is its twin, for passes
+    // dispatched indirectly with a count only the GPU knows.
+    static glm::uvec3 grid_for(std::size_t n, unsigned local_size);
 
 private:
     GLuint id_ = 0;

@@ -163,6 +163,67 @@ void main() {
     for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(r[i], i + 1) << i;
 }
 
+// compute.glsl's rt_dispatch_size, for indirect dispatches, is Program::grid_for, the grid of dispatch_threads; and
+// an indirect dispatch of the grid it writes reaches every thread once (here a local size of 1: 70001 groups, 2D).
+TEST(Shader, IndirectDispatchSizeIsTheGridOfDispatchThreads) {
+    test_context();
+    Program sizes = Program::compute_source("sizes.comp", R"(#version 450
+#include "common/shaders/compute.glsl"
+#include "common/shaders/bindings.glsl"
+layout(local_size_x = 1) in;
+layout(std430, binding = RT_BINDING_STAGE_FIRST) buffer Io { uint io[]; };   // (threads, local size) -> grid
+uniform uint count;
+void main() {
+    const uint i = rt_global_index();
+    if (i >= count) return;
+    const uvec3 grid = rt_dispatch_size(io[5u * i], io[5u * i + 1u]);
+    io[5u * i + 2u] = grid.x;
+    io[5u * i + 3u] = grid.y;
+    io[5u * i + 4u] = grid.z;
+}
+)");
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>> cases = {
+        {0, 64},    {1, 64},     {64, 64},    {65, 64},         {65535u * 64, 64}, {65535u * 64 + 1, 64},
+        {70001, 1}, {65535, 1},  {65536, 1},  {0xffffffffu, 64}, {0xffffffffu, 1},  {4096, 256}};
+    std::vector<std::uint32_t> io;
+    for (const auto& [threads, local] : cases) io.insert(io.end(), {threads, local, 0u, 0u, 0u});
+    Buffer buffer = Buffer::from(io);
+    buffer.bind(kBindingStageFirst);
+    sizes.set("count", unsigned(cases.size()));
+    sizes.dispatch_threads(cases.size());
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const auto r = buffer.download_all<std::uint32_t>();
+    for (std::size_t c = 0; c < cases.size(); ++c) {
+        const glm::uvec3 want = Program::grid_for(cases[c].first, cases[c].second);
+        EXPECT_EQ(glm::uvec3(r[5 * c + 2], r[5 * c + 3], r[5 * c + 4]), want)
+            << cases[c].first << " threads in groups of " << cases[c].second;
+    }
+
+    Program fill = Program::compute_source("fill.comp", R"(#version 450
+#include "common/shaders/compute.glsl"
+#include "common/shaders/bindings.glsl"
+layout(local_size_x = 1) in;
+layout(std430, binding = RT_BINDING_STAGE_FIRST) buffer Out { uint result[]; };
+uniform uint n;
+void main() {
+    const uint i = rt_global_index();
+    if (i < n) result[i] += i + 1u;
+}
+)");
+    const std::uint32_t n = 70001;
+    const glm::uvec3 grid = Program::grid_for(n, 1);
+    ASSERT_GT(grid.y, 1u);
+    const Buffer args = Buffer::from(std::vector<std::uint32_t>{grid.x, grid.y, grid.z});
+    Buffer out(std::size_t(n) * 4);
+    out.clear_u32(0);
+    out.bind(kBindingStageFirst);
+    fill.set("n", n);
+    fill.dispatch_indirect(args, 0);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const auto filled = out.download_all<std::uint32_t>();
+    for (std::uint32_t i = 0; i < n; ++i) ASSERT_EQ(filled[i], i + 1) << i;
+}
+
 TEST(Shader, CountersCarryBeyond32Bits) {
     test_context();
     Program p = Program::compute_source("counters.comp", R"(#version 450
