@@ -53,6 +53,8 @@ std::size_t Scan::window() const {
     return w;
 }
 
+bool Scan::scanned_whole(std::size_t n) const { return n <= kScanWhole && n <= window(); }
+
 // The arrays are bound window by window (whole blocks, at most one storage block each); the block sums of all
 // windows go to one array (block_base: the window's first block), which is much smaller and bound whole.
 void Scan::scan_level(const Passes& passes, const Program& block, const Buffer& in, Buffer& out, std::size_t n,
@@ -60,6 +62,17 @@ void Scan::scan_level(const Passes& passes, const Program& block, const Buffer& 
     const std::size_t blocks = block_count(n), w = window();
     sums_[level].reserve(blocks * sizeof(std::uint32_t));
     bind_uints(sums_[level], kBindingScanSums, blocks);
+    if (scanned_whole(n)) {   // one work group, block after block: the total in sums_[level][0]
+        bind_uints(in, kBindingScanIn, n);
+        bind_uints(out, kBindingScanOut, n);
+        block.set("n", unsigned(n));
+        block.set("block_base", 0u);
+        block.set("whole", 1u);
+        block.dispatch(1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        return;
+    }
+    block.set("whole", 0u);
     for (std::size_t begin = 0; begin < n; begin += w) {
         const std::size_t count = std::min(w, n - begin);
         bind_uints(in, kBindingScanIn, count, begin);
@@ -97,11 +110,11 @@ void Scan::run(const Passes& passes, const Buffer& in, Buffer& out, std::size_t 
     }
     // One sums buffer per level, allocated before recursing (scan_level holds references into sums_).
     std::size_t top = 0;
-    for (std::size_t m = n; block_count(m) > 1; m = block_count(m)) ++top;
+    for (std::size_t m = n; !scanned_whole(m); m = block_count(m)) ++top;
     if (sums_.size() < top + 1) sums_.resize(top + 1);
     scan_level(passes, passes.first, in, out, n, 0);
     if (total) {
-        // The top level is a single block whose total is the total of everything; it sits in that level's sums[0].
+        // The top level is scanned by one work group, whose total is the total of everything: that level's sums[0].
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         sums_[top].copy_to(*total, sizeof(std::uint32_t), 0, total_offset);
     }

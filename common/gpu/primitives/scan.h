@@ -24,6 +24,10 @@
 namespace rt::gpu {
 
 constexpr std::size_t kScanBlock = 512;   // elements per work group (scan_common.glsl: SCAN_BLOCK)
+// Up to this many elements, one work group scans them all, block after block (scan_block.comp: `whole`): one dispatch
+// instead of three (block, sums, add). On llvmpipe each dispatch costs tens of microseconds whatever it holds, and a
+// frame of stage 05 scans about 90 short arrays; 8 blocks keep the one group's serial walk short on a real GPU too.
+constexpr std::size_t kScanWhole = 8 * kScanBlock;
 
 class Scan {
 public:
@@ -51,6 +55,7 @@ private:
         const Program& add;
     };
     std::size_t window() const;
+    bool scanned_whole(std::size_t n) const;   // n <= kScanWhole, in one window
     void run(const Passes& passes, const Buffer& in, Buffer& out, std::size_t n, Buffer* total, std::size_t offset);
     void scan_level(const Passes& passes, const Program& block, const Buffer& in, Buffer& out, std::size_t n,
                     std::size_t level);

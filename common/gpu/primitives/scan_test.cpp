@@ -12,8 +12,10 @@
 namespace rt::gpu {
 namespace {
 
-// 7, 8, 9: one thread's run of scan_block.comp and the next; 511-513: a block's; 262145: three levels.
-const std::size_t kSizes[] = {1, 7, 8, 9, 255, 256, 257, 511, 512, 513, 100000, 262145};
+// 7, 8, 9: one thread's run of scan_block.comp and the next; 511-513: a block's; 4095-4097: the most elements one
+// work group scans whole (kScanWhole), and one more (a block pass, the block totals whole); 2097153: three levels
+// (4097 block totals, too many to scan whole).
+const std::size_t kSizes[] = {1, 7, 8, 9, 255, 256, 257, 511, 512, 513, 4095, 4096, 4097, 100000, 262145, 2097153};
 
 std::vector<std::uint32_t> random_values(std::size_t n, std::uint32_t max, unsigned seed) {
     std::mt19937 rng(seed);
