@@ -27,7 +27,9 @@ void bind_window(const Buffer& b, GLuint binding, std::size_t begin, std::size_t
 }  // namespace
 
 RadixSort::RadixSort()
-    : count_(Program::compute("common/shaders/primitives/radix_count.comp")), scatter_(Program::compute("common/shaders/primitives/radix_scatter.comp")) {}
+    : count_(Program::compute("common/shaders/primitives/radix_count.comp")),
+      scatter_(Program::compute("common/shaders/primitives/radix_scatter.comp")),
+      tile_(Program::compute("common/shaders/primitives/radix_tile.comp")) {}
 
 void RadixSort::sort(Buffer& keys, Buffer& values, std::size_t n, unsigned key_bits) {
     run(keys, values, n, nullptr, key_bits);
@@ -56,6 +58,10 @@ void RadixSort::run(Buffer& keys, Buffer& values, std::size_t n, const Buffer* g
     check_storage_block("RadixSort counts", kRadix * tiles_for(n));
 
     keys_tmp_.reserve(n * 4);
+    if (n <= kSortTile) {   // one tile: one work group, every pass (radix_tile.comp)
+        sort_tile(keys, values, n, gpu_count, key_bits);
+        return;
+    }
     values_tmp_.reserve(n * 4);
     counts_.reserve(kRadix * tiles_for(n) * 4);
     Buffer* src_keys = &keys;
@@ -75,6 +81,24 @@ void RadixSort::run(Buffer& keys, Buffer& values, std::size_t n, const Buffer* g
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     check_gl("RadixSort");
+}
+
+void RadixSort::sort_tile(Buffer& keys, Buffer& values, std::size_t n, const Buffer* gpu_count, unsigned key_bits) {
+    values_tmp_.reserve(n * 4);
+    counts_.reserve(4);
+    bind_window(keys, kBindingSortKeysIn, 0, n);
+    bind_window(values, kBindingSortValuesIn, 0, n);
+    bind_window(keys_tmp_, kBindingSortKeysOut, 0, n);
+    bind_window(values_tmp_, kBindingSortValuesOut, 0, n);
+    (gpu_count ? *gpu_count : counts_).bind_range(kBindingSortCount, 0, 4);   // read only with a GPU count
+    tile_.set("n", unsigned(n));
+    tile_.set("tile_base", 0u);
+    tile_.set("tiles", 1u);
+    tile_.set("count_from_buffer", gpu_count ? 1u : 0u);
+    tile_.set("key_bits", key_bits);
+    tile_.dispatch(1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    check_gl("RadixSort (one tile)");
 }
 
 void RadixSort::pass(const Buffer& keys_in, const Buffer& values_in, Buffer& keys_out, Buffer& values_out,

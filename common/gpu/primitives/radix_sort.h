@@ -6,7 +6,9 @@
 //                                    the same digit, so keys with equal digits keep their order (stable).
 // ceil(key_bits / 6) passes ping-pong between the caller's buffers and two kept scratch buffers. Arrays of at most
 // kScatterScanTiles tiles skip step 2: each scatter work group sums the counts it needs (at most 64 x 64), which
-// saves a dispatch per pass (stage 05 sorts ~16 short arrays a frame, 6 passes each).
+// saves a dispatch per pass (stage 05 sorts ~16 short arrays a frame, 6 passes each). Arrays of at most one tile
+// (kSortTile keys) take one dispatch for all passes: one work group counts, scans and scatters each pass itself
+// (radix_tile.comp), the same order.
 //
 // Why 6 bits and 64 threads of 64 keys: the scatter's rank table (digits x threads) must fit shared memory (32 KiB on
 // llvmpipe: 64 x 64 uints is 16 KiB), and a tile's threads share its barriers; on llvmpipe a work group runs on one
@@ -51,10 +53,11 @@ public:
 
 private:
     void run(Buffer& keys, Buffer& values, std::size_t n, const Buffer* gpu_count, unsigned key_bits);
+    void sort_tile(Buffer& keys, Buffer& values, std::size_t n, const Buffer* gpu_count, unsigned key_bits);
     void pass(const Buffer& keys_in, const Buffer& values_in, Buffer& keys_out, Buffer& values_out, std::size_t n,
               unsigned shift, unsigned bits, std::size_t window, const Buffer* gpu_count);
     Scan scan_;
-    Program count_, scatter_;
+    Program count_, scatter_, tile_;
     Buffer keys_tmp_, values_tmp_, counts_;
     std::size_t window_override_ = 0;
 };

@@ -168,6 +168,42 @@ TEST(GpuRadixSort, CountOnTheGpuSortsOnlyThatPrefix) {
     EXPECT_THROW(sort.sort(keys, values, n, Buffer(), 32), std::out_of_range);
 }
 
+// Arrays of at most one tile are sorted by one work group in one dispatch (radix_tile.comp), every pass there: the
+// same order as std::stable_sort for every key width (an odd number of passes ends in the scratch buffers and is
+// copied back; a last pass narrower than 6 bits), at the tile's edge and below, and with the count on the GPU.
+TEST(GpuRadixSort, OneTileIsSortedByOneWorkGroupInEveryPass) {
+    test_context();
+    RadixSort sort;
+    for (std::size_t n : {std::size_t(2), std::size_t(1000), kSortTile - 1, kSortTile})
+        for (unsigned key_bits : {1u, 5u, 6u, 7u, 12u, 18u, 29u, 30u, 31u, 32u})
+            expect_sorted_like_std(sort, with_index_values(random_keys(n, unsigned(n) + key_bits)), key_bits,
+                                   "one tile");
+    // Many equal keys in one tile: their order is their runs' order across the group's threads.
+    std::vector<std::uint32_t> few(kSortTile);
+    for (std::size_t i = 0; i < few.size(); ++i) few[i] = std::uint32_t(i * 7919u % 5u);
+    expect_sorted_like_std(sort, with_index_values(few), 32, "five keys");
+    const std::size_t n = kSortTile;
+    const Pairs all = with_index_values(random_keys(n, 23));
+    for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(300), n - 1, n}) {
+        for (unsigned key_bits : {32u, 7u}) {
+            Pairs in = all;
+            for (std::size_t i = count; i < n; ++i) in.keys[i] = 0u;   // would come first if sorted
+            Buffer keys = Buffer::from(in.keys), values = Buffer::from(in.values);
+            sort.sort(keys, values, n, Buffer::from(std::vector<std::uint32_t>{std::uint32_t(count)}), key_bits);
+            const Pairs expected = cpu_stable_sort({{in.keys.begin(), in.keys.begin() + std::ptrdiff_t(count)},
+                                                    {in.values.begin(), in.values.begin() + std::ptrdiff_t(count)}},
+                                                   key_bits);
+            std::vector<std::uint32_t> got_keys = keys.download<std::uint32_t>(n);
+            std::vector<std::uint32_t> got_values = values.download<std::uint32_t>(n);
+            got_keys.resize(count);
+            got_values.resize(count);
+            const std::string what = "count " + std::to_string(count) + ", key_bits " + std::to_string(key_bits);
+            EXPECT_EQ(got_keys, expected.keys) << what;
+            EXPECT_EQ(got_values, expected.values) << what;
+        }
+    }
+}
+
 // Over 2^25 elements: on llvmpipe (128 MiB storage blocks) the arrays are two windows of the real limit. One pass
 // (key_bits 4) keeps the run time reasonable on llvmpipe; the windows' other paths are tested above.
 TEST(GpuRadixSort, OverTwoToThe25Elements) {
