@@ -128,7 +128,7 @@ private:
     // node the codes it spans (two levels, alternately below and being built).
     gpu::Buffer tree_groups_, tree_codes_;
     bool tree_every_4_ = false;   // the last tree grouped every 4 nodes (its prefix groups would not fit the limit)
-    gpu::Buffer args_;   // indirect dispatch arguments per step (3 uints each), written by rh_args.comp
+    gpu::Buffer args_;   // indirect dispatch arguments (3 uints each) per step (rh_cull.comp) and the fold's
     std::vector<gpu::Buffer> pairs_, counts_, offsets_;   // per step of the depth-first traversal (0 = the top)
     std::vector<std::uint32_t> level_first_, level_nodes_;   // the ray hierarchy's levels (level 0 = the rays)
     std::vector<std::uint32_t> object_level_first_, object_level_count_;   // the object tree's (level 1 first)

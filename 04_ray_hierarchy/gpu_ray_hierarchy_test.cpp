@@ -296,13 +296,13 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
 }
 
 // A batch whose chunks fit one window each is traced without a read-back inside it: the GPU sizes every step's
-// dispatches from the counts it wrote itself (rh_args.comp). Shadow rays of one light (one group, which the batch's
-// runs name: nothing is read back to find it, one read-back until 2026-12-05): the only read-back is, once the CPU's
-// bound of the pairs (x4 a step) passes the pair capacity, one look at the real lengths of the chunk and of its
-// children (1), however many steps the traversal takes (a read-back per step before); the group's counts stay on the
-// GPU (rh_tally.comp) until stats() reads them, once (1). The same rays for closest hits add the fold's one look at its
-// flag after two rounds (its rounds and the select's length stay on the GPU). With 64-pair buffers the chunks are cut
-// into windows (read-backs), with the same occlusion and counts.
+// dispatches from the counts it wrote itself (the last work group of each step's rh_cull.comp). Shadow rays of one
+// light (one group, which the batch's runs name: nothing is read back to find it, one read-back until 2026-12-05):
+// the only read-back is, once the CPU's bound of the pairs (x4 a step) passes the pair capacity, one look at the real
+// lengths of the chunk and of its children (1), however many steps the traversal takes (a read-back per step before);
+// the group's counts stay on the GPU (rh_tally.comp) until stats() reads them, once (1). The same rays for closest
+// hits add the fold's one look at its flag after two rounds (its rounds and the select's length stay on the GPU).
+// With 64-pair buffers the chunks are cut into windows (read-backs), with the same occlusion and counts.
 TEST(GpuRayHierarchy, ChunksThatFitOneWindowNeedNoReadBack) {
     gpu::test_context();
     const TraceSetup setup("cornell");

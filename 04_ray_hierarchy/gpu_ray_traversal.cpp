@@ -117,7 +117,9 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
             pairs_[step + 1].reserve(std::size_t(cap) * 8);
             pairs_[step + 1].bind(gpu::kWavefrontBindingTraversalFirst + 4);
             order_.bind(gpu::kWavefrontBindingTraversalFirst + 5);   // rh_common.glsl: RH_BINDING_CULL_ORDER
+            args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);    // the next step's dispatch, by the last group
             cull.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
+            cull.set("rh_args_first", unsigned(step + 1) * 3);
         } else {   // the counts and the groups' first places, for rh_expand.comp's windows
             step_buffers(step, count);
             counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
@@ -138,18 +140,8 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         }
         ++chunks;
     }
-    if (chain) {   // one window of at most `cap` pairs, whatever the GPU found
+    if (chain) {   // one window of at most `cap` pairs, whatever the GPU found; the test pass wrote its dispatch
         ++windows;
-        {
-            std::optional<gpu::GpuTimer::Scope> timed;
-            if (timer) timed.emplace(*timer, phase("rh_traverse"));
-            info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);
-            args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
-            args_pass_.set("rh_slot", slot + 1);
-            args_pass_.set("rh_args_first", unsigned(step + 1) * 3);
-            args_pass_.dispatch(1);
-            barrier();
-        }
         const auto bound = std::uint32_t(std::min<std::uint64_t>(std::uint64_t(count) * most, cap));
         test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, bound, true);
         return;

@@ -1,6 +1,7 @@
 #version 450 core
-// One thread: the indirect dispatch arguments (work groups of 64) of a chunk whose length only the GPU knows
-// (rh_info[rh_slot], counted by the previous step's rh_cull.comp), so the traversal goes on without a read-back.
+// One thread: the indirect dispatch arguments (work groups of 64) of a pass whose length only the GPU knows
+// (rh_info[rh_slot]): the fold's select pass, over the hit list's length, with no read-back. (A traversal step's
+// dispatch is written by the last work group of the step before: rh_cull.comp.)
 #include "rh_common.glsl"
 #include "rh_info.glsl"
 

@@ -14,7 +14,10 @@
 // (rh_info[rh_children_slot]), which thereby ends as their number: no scan, no pass between this one and
 // rh_expand.comp (until 2026-12-05 a scan of the groups' sums placed them, up to three more dispatches per step).
 // Both atomics hand out places in whatever order the threads and groups run: the order of the pairs changes nothing
-// the traversal computes, the hits, the occlusion or the counts.
+// the traversal computes, the hits, the occlusion or the counts. With RH_CULL_WRITES_CHILDREN the last group to finish
+// also writes the next step's indirect dispatch from the children's final count (the "last block" of a reduction:
+// every group counts itself done after its add, so the group that counts last has seen every add), which until
+// 2026-12-05 was a pass of its own (rh_args.comp), one dispatch more per step.
 // rh_counts[i] packs the count (bits 0-12, at most 4096), that place (bits 13-30, at most 63 x 4096) and the side
 // split (bit 31: the object side).
 #include "rh_common.glsl"
@@ -31,7 +34,9 @@ layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject 
 // children itself once its group's place is known, and the step needs no rh_expand.comp.
 layout(std430, binding = RH_BINDING_PAIRS_OUT) writeonly buffer PairsOut { uvec2 rh_pairs_out[]; };
 layout(std430, binding = RH_BINDING_CULL_ORDER) readonly buffer Order { uint rh_order[]; };
+layout(std430, binding = RH_BINDING_OFFSETS) writeonly buffer Args { uint rh_args[]; };   // as rh_args.comp's
 uniform uint rh_identity_order;  // as rh_expand.comp's
+uniform uint rh_args_first;      // where the next step's 3 dispatch arguments go
 shared uint rh_group_base;
 #else
 layout(std430, binding = RH_BINDING_COUNTS) writeonly buffer Counts { uint rh_counts[]; };
@@ -109,6 +114,17 @@ void main() {
         const uint group_first = atomicAdd(rh_info[rh_children_slot], rh_group_sum);
 #ifdef RH_CULL_WRITES_CHILDREN
         rh_group_base = group_first;
+        // The next step's dispatch, by the last group done: its add came before its done count (the barrier), and
+        // so did every other group's, so the atomic read sees the children's final count.
+        memoryBarrierBuffer();
+        const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
+        if (atomicAdd(rh_info[RH_INFO_GROUPS_DONE], 1u) == groups - 1u) {
+            const uvec3 grid = rt_dispatch_size(atomicAdd(rh_info[rh_children_slot], 0u), 64u);
+            rh_args[rh_args_first] = grid.x;
+            rh_args[rh_args_first + 1u] = grid.y;
+            rh_args[rh_args_first + 2u] = grid.z;
+            atomicExchange(rh_info[RH_INFO_GROUPS_DONE], 0u);   // for the next step's pass
+        }
 #else
         rh_group_offsets[rt_group_index()] = group_first;
 #endif

@@ -4,6 +4,7 @@
 #define RH_INFO_SURVIVORS 0u      // unused
 #define RH_INFO_HITS 1u           // the hit list's length (closest hits)
 #define RH_INFO_FOLD 2u           // the fold's "some ray has a next hit" flag
+#define RH_INFO_GROUPS_DONE 3u    // rh_cull.comp's groups done (0 between passes: the last one resets it)
 #define RH_INFO_FOLD_TESTS 4u     // [4 + kind]: the fold's re-tests per ray kind (five kinds: 4..8)
 #define RH_INFO_EXACT 10u         // 64-bit: exact ray/triangle tests (the pairs that passed the cheap tests)
 #define RH_INFO_OBJECT_IN 12u     // 64-bit: pairs tested whose object side is an object node
