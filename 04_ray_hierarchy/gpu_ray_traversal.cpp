@@ -117,7 +117,11 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
             pairs_[step + 1].reserve(std::size_t(cap) * 8);
             pairs_[step + 1].bind(gpu::kWavefrontBindingTraversalFirst + 4);
             order_.bind(gpu::kWavefrontBindingTraversalFirst + 5);   // rh_common.glsl: RH_BINDING_CULL_ORDER
-            args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);    // the next step's dispatch, by the last group
+            // The next step's dispatch, written by the pass's last work group; zero until then, so that when no
+            // group runs (a chunk of no pairs) the next step has no groups either, not an earlier chunk's.
+            const std::uint32_t no_groups[3] = {0, 1, 1};
+            args_.upload(no_groups, sizeof no_groups, std::size_t(step + 1) * 12);
+            args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
             cull.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
             cull.set("rh_args_first", unsigned(step + 1) * 3);
         } else {   // the counts and the groups' first places, for rh_expand.comp's windows
