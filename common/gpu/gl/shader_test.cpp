@@ -140,9 +140,10 @@ TEST(Shader, BindingsMatchBetweenCppAndGlsl) {
     EXPECT_EQ(glsl, cpp);
 }
 
-TEST(Shader, DispatchBeyond65535GroupsUsesA2DGrid) {
-    test_context();
-    Program p = Program::compute_source("grid.comp", R"(#version 450
+// Thread i of n adds i + 1 to result[i] (one thread a group): on a zeroed buffer, each thread reached exactly once
+// leaves result[i] = i + 1.
+Program each_thread_once() {
+    return Program::compute_source("each_thread.comp", R"(#version 450
 #include "common/shaders/compute.glsl"
 #include "common/shaders/bindings.glsl"
 layout(local_size_x = 1) in;
@@ -150,9 +151,14 @@ layout(std430, binding = RT_BINDING_STAGE_FIRST) buffer Out { uint result[]; };
 uniform uint n;
 void main() {
     const uint i = rt_global_index();
-    if (i < n) result[i] = i + 1u;
+    if (i < n) result[i] += i + 1u;
 }
 )");
+}
+
+TEST(Shader, DispatchBeyond65535GroupsUsesA2DGrid) {
+    test_context();
+    Program p = each_thread_once();
     const std::size_t n = 70001;
     Buffer out(n * 4);
     out.clear_u32(0);
@@ -199,17 +205,7 @@ void main() {
             << cases[c].first << " threads in groups of " << cases[c].second;
     }
 
-    Program fill = Program::compute_source("fill.comp", R"(#version 450
-#include "common/shaders/compute.glsl"
-#include "common/shaders/bindings.glsl"
-layout(local_size_x = 1) in;
-layout(std430, binding = RT_BINDING_STAGE_FIRST) buffer Out { uint result[]; };
-uniform uint n;
-void main() {
-    const uint i = rt_global_index();
-    if (i < n) result[i] += i + 1u;
-}
-)");
+    Program fill = each_thread_once();
     const std::uint32_t n = 70001;
     const glm::uvec3 grid = Program::grid_for(n, 1);
     ASSERT_GT(grid.y, 1u);

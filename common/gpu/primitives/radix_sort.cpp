@@ -16,8 +16,8 @@ constexpr std::size_t kRadix = std::size_t(1) << kRadixBits;
 std::size_t tiles_for(std::size_t n) { return (n + kSortTile - 1) / kSortTile; }
 
 void dispatch_tiles(const Program& p, std::size_t tiles) {
-    if (tiles <= kMaxGroupsX) p.dispatch(unsigned(tiles));
-    else p.dispatch(kMaxGroupsX, unsigned((tiles + kMaxGroupsX - 1) / kMaxGroupsX));
+    const glm::uvec3 grid = Program::grid_for(tiles, 1);   // one group a tile, 2D beyond kMaxGroupsX
+    p.dispatch(grid.x, grid.y, grid.z);
 }
 
 // Binds elements [begin, begin + count) of a uint buffer.

@@ -15,8 +15,8 @@ constexpr GLbitfield kAllBarriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UP
 std::size_t block_count(std::size_t n) { return (n + kScanBlock - 1) / kScanBlock; }
 
 void dispatch_blocks(const Program& p, std::size_t blocks) {
-    if (blocks <= kMaxGroupsX) p.dispatch(unsigned(blocks));
-    else p.dispatch(kMaxGroupsX, unsigned((blocks + kMaxGroupsX - 1) / kMaxGroupsX));
+    const glm::uvec3 grid = Program::grid_for(blocks, 1);   // one group a block, 2D beyond kMaxGroupsX
+    p.dispatch(grid.x, grid.y, grid.z);
 }
 
 // Binds uints [begin, begin + n) of a buffer (never more than the shader may see).
