@@ -46,7 +46,7 @@ void GpuRayHierarchy::reset_stats() {
     cpu_stats_ = stats_ = {};
     tally_.clear_u32(0);
     tally_read_ = true;
-    fold_rounds = prunes = chunks = windows = syncs = 0;
+    fold_rounds = prunes = chunks = windows = syncs = groups_retraced = 0;
 }
 
 // The CPU's own counts plus the GPU's sums (one read-back, only when a trace ran since the last one).
@@ -149,22 +149,64 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
         hits_bound_ = 0;
     }
 
-    for (const Group& g : find_groups(in)) {
+    // Speculatively first (gpu_ray_hierarchy.h), then one look at the mark and at the hit list's length: for closest
+    // hits the fold's first look at its flag, after its first rounds (which change nothing when a group is marked).
+    // The per-pixel test counts (--heatmap, --pixel) are added as the tests run, so a group traced twice would count
+    // twice: those frames take the windows' read-backs from the start.
+    const std::vector<Group> groups = find_groups(in);
+    const gpu::ShaderDefines& d = in.wavefront.defines();
+    std::size_t& limit = speculation_limit_[shadow ? 1 : 0];
+    const bool speculate =
+        options.speculate && n < limit && !d.count("RECORD_TESTS_PER_PIXEL") && !d.count("WATCH_PIXEL");
+    fitted_ = true;
+    trace_groups(groups, 0, speculate);
+    bool folded = false;
+    if (speculate && !groups.empty() && traversable()) {
+        std::vector<std::uint32_t> w;   // rh_info.glsl: RH_INFO_OVERFLOW, RH_INFO_HITS
+        if (shadow)
+            w = read_info(0, 2);
+        else
+            folded = fold(in, &w);
+        if (w[0] != 0) {
+            // The hits past the list's end were not written; those before it are real hits of their rays.
+            const std::uint32_t first = w[0] - 1, fixed[2] = {0u, std::min(w[1], std::uint32_t(hit_capacity_))};
+            info_.upload(fixed, sizeof fixed, 0);
+            hits_bound_ = fixed[1];
+            groups_retraced += groups.size() - first;
+            retrace_ = true;
+            trace_groups(groups, first, false);
+            retrace_ = false;
+            limit = n;
+        }
+    } else if (fitted_ && n >= limit) {
+        limit = std::size_t(n) + 1;
+    }
+    if (!shadow && !folded) fold(in);
+    tally_read_ = false;
+    gpu::check_gl("04_ray_hierarchy: trace");
+}
+
+// Groups [first, end) of the batch, each built and traversed; `speculative`: with no read-back (one window a step).
+void GpuRayHierarchy::trace_groups(const std::vector<Group>& groups, std::size_t first, bool speculative) {
+    speculative_ = speculative;
+    for (std::size_t i = first; i < groups.size(); ++i) {
+        const Group& g = groups[i];
         group_ = g;
+        group_mark_ = std::uint32_t(i + 1);
         HierarchyKindStats& ks = cpu_stats_[g.kind];
-        ks.rays += g.count;
-        ks.groups += 1;
-        ks.brute_force_tests += std::uint64_t(g.count) * triangles_;
-        if (triangles_ == 0 || (options.objects != ObjectMode::triangles && objects_ == 0)) continue;
-        const int top = build(in, g);
+        if (!retrace_) {
+            ks.rays += g.count;
+            ks.groups += 1;
+            ks.brute_force_tests += std::uint64_t(g.count) * triangles_;
+        }
+        if (!traversable()) continue;
+        const int top = build(*in_, g);
         const std::vector<std::uint32_t> zeros(kInfoWords - kInfoGroupFirst, 0u);
         info_.upload(zeros.data(), zeros.size() * 4, kInfoGroupFirst * 4);
         traverse(top);
         tally_group();
     }
-    if (!shadow) fold(in);
-    tally_read_ = false;
-    gpu::check_gl("04_ray_hierarchy: trace");
+    speculative_ = false;
 }
 
 // The group's counts (rh_info.glsl: per ray level the pairs tested and kept, the object level's, the exact tests)
@@ -227,7 +269,8 @@ int GpuRayHierarchy::build(const gpu::BatchTraceInputs& in, const Group& g) {
     }
     HierarchyKindStats& ks = cpu_stats_[g.kind];
     if (ks.levels.size() < level_nodes_.size()) ks.levels.resize(level_nodes_.size());
-    for (std::size_t l = 0; l < level_nodes_.size(); ++l) ks.levels[l].nodes += level_nodes_[l];
+    if (!retrace_)
+        for (std::size_t l = 0; l < level_nodes_.size(); ++l) ks.levels[l].nodes += level_nodes_[l];
     // The level tables of rh_cull.comp (both of its variants).
     std::vector<unsigned> first(kMaxRayLevels, 0u), nodes(kMaxRayLevels, 0u);
     std::copy(level_first_.begin(), level_first_.end(), first.begin());

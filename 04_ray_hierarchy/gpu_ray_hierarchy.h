@@ -16,8 +16,14 @@
 //   local     rh_leaf.comp, on every (ray, triangle) pair a step leaves: the ray against the triangle's sphere, then
 //             the exact ray/triangle test; for closest hits then rh_fold.comp (rh_closest.glsl: brute force's hit).
 //
-// Every buffer holds at most `capacity()` entries (from the storage limit, Wavefront::storage_limit()): chunks and
-// windows are sized so that none overflows, so a pair is never dropped, however many survive.
+// Every buffer holds at most `capacity()` entries (from the storage limit, Wavefront::storage_limit()). A batch is
+// traced speculatively first: every step's children go to one window, written and dispatched by the GPU alone, with
+// nothing read back until the batch's groups are done; a pass that finds no room for a pair or a hit drops it and
+// marks its group. One read-back then: no mark (the rule: a window rarely fills) and the batch is done; a mark, and
+// that group and every later one are traced again, their windows and the hit list's room sized from read-back
+// lengths, so that nothing overflows (what the first try found stays: every hit it listed and every occlusion it
+// set are real, and its counts were never added). So a pair is never dropped, however many survive. A batch as large as
+// one of its kind that ran out of room skips the try (speculation_limit_).
 #pragma once
 
 #include <array>
@@ -62,6 +68,8 @@ public:
     const std::array<HierarchyKindStats, kRayKinds>& stats();
     void reset_stats();
     std::uint64_t fold_rounds = 0, prunes = 0, chunks = 0, windows = 0;
+    // Groups traced again since reset_stats(): a speculative try found no room in a window or the hit list.
+    std::uint64_t groups_retraced = 0;
     // GPU -> CPU read-backs since reset_stats() (each waits for the GPU); stats() adds one when it reads the counts.
     std::uint64_t syncs = 0;
     // The object tree of the last prepare(): levels above the triangles and nodes (0 without a tree).
@@ -98,6 +106,10 @@ private:
     };
     void compile(const gpu::Wavefront& wavefront);
     std::vector<Group> find_groups(const gpu::BatchTraceInputs& in);
+    void trace_groups(const std::vector<Group>& groups, std::size_t first, bool speculative);
+    bool traversable() const {   // something to meet: triangles, and the objects of options.objects
+        return triangles_ != 0 && (options.objects == ObjectMode::triangles || objects_ != 0);
+    }
     int build(const gpu::BatchTraceInputs& in, const Group& g);
     void traverse(int top);
     void build_tree(const Bounds& bounds);   // gpu_object_tree.cpp, with prepare() and download_tree()
@@ -108,7 +120,7 @@ private:
     void tally_group();   // the group's counts into the GPU's sums (no read-back)
     void leaf_dispatch(int step, std::uint32_t first, std::uint32_t count, bool on_gpu);
     void prune_hits();
-    void fold(const gpu::BatchTraceInputs& in);
+    bool fold(const gpu::BatchTraceInputs& in, std::vector<std::uint32_t>* first_look = nullptr);
     void set_source(const gpu::Program& p, const Source& s) const;
     void step_buffers(int step, std::size_t pairs);
     std::uint32_t read_info(int index);   // one word of rh_info, in one read-back (counted in syncs)
@@ -142,6 +154,15 @@ private:
     Group group_;
     bool shadow_ = false;
     int top_ = 0;
+    bool speculative_ = false;    // the group's steps go to one window each; no read-back (trace)
+    bool retrace_ = false;        // the groups are traced again: the CPU's counts of them are in already
+    // Per batch kind (closest hits, shadow): batches of this many rays or more are traced the careful way from the
+    // start. A batch that outgrows its windows (many rays, a big scene) mostly does so again, and its try would be
+    // wasted work each time: a speculative batch that ran out of room lowers the limit to its size, and a careful one
+    // that fitted (no step cut into windows, no hits pruned) raises it past its size.
+    std::array<std::size_t, 2> speculation_limit_{SIZE_MAX, SIZE_MAX};
+    bool fitted_ = true;          // the batch being traced, so far
+    std::uint32_t group_mark_ = 0;   // rh_info.glsl: rh_overflow_mark, 1 + the group's place in the batch
     int max_depth_ = 0;   // steps after which only (ray, triangle) pairs are left
 };
 

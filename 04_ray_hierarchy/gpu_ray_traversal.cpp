@@ -76,9 +76,9 @@ void GpuRayHierarchy::traverse(int top) {
 //
 // `on_gpu`: the chunk's length is known on the GPU only (rh_info[kInfoStepCount + step], args_ holds its dispatch),
 // and `count` is a bound of it. While the children of a chunk cannot outnumber one window (count x the most
-// children a pair has), the test pass writes them itself and the traversal goes on without reading anything back:
-// the next step's passes are dispatched indirectly. Only when that bound passes capacity() are the chunk's counts
-// read back (one sync), to cut it into windows for rh_expand.comp.
+// children a pair has), or always in a speculative batch (gpu_ray_hierarchy.h), the test pass writes them itself and
+// the traversal goes on without reading anything back: the next step's passes are dispatched indirectly. Otherwise
+// the chunk's counts are read back (one sync), to cut it into windows for rh_expand.comp.
 void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t count, bool on_gpu) {
     if (step > kMaxSteps) throw std::logic_error("04_ray_hierarchy: more traversal steps than rh_info.glsl holds");
     step_buffers(step, 0);
@@ -97,8 +97,9 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         return;
     }
     // While the children cannot outnumber one window, the test pass writes them itself (rh_cull.comp compiled with
-    // RH_CULL_WRITES_CHILDREN) and the traversal goes on without reading anything back.
-    const bool chain = std::uint64_t(count) * most <= capacity_;
+    // RH_CULL_WRITES_CHILDREN) and the traversal goes on without reading anything back; a speculative batch always
+    // does, and the pass marks the group when they do not fit (rh_info.glsl: rh_mark_overflow).
+    const bool chain = speculative_ || std::uint64_t(count) * most <= capacity_;
     const std::uint32_t cap = std::uint32_t(capacity_);
     {
         std::optional<gpu::GpuTimer::Scope> timed;
@@ -124,6 +125,8 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
             args_.bind(gpu::kWavefrontBindingTraversalFirst + 6);
             cull.set("rh_identity_order", options.objects == ObjectMode::tree ? 0u : 1u);
             cull.set("rh_args_first", unsigned(step + 1) * 3);
+            cull.set("rh_window_room", cap);
+            cull.set("rh_overflow_mark", group_mark_);
         } else {   // the counts and the groups' first places, for rh_expand.comp's windows
             step_buffers(step, count);
             counts_[step].bind(gpu::kWavefrontBindingTraversalFirst + 5);
@@ -150,6 +153,7 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         test_chunk(step + 1, Source{false, 0, 0, 0, 0, 0}, bound, true);
         return;
     }
+    if (total > cap) fitted_ = false;   // a speculative try would have run out of room here
     for (std::uint32_t w0 = 0; w0 < total; w0 += cap) {
         const std::uint32_t w = std::min(cap, total - w0);
         expand(step, src, count, false, w0, w);
@@ -195,7 +199,7 @@ void GpuRayHierarchy::expand(int step, const Source& src, std::uint32_t count, b
 // The last step's chunk of `count` (ray, triangle) pairs (a bound of them, on_gpu) to rh_leaf.comp.
 void GpuRayHierarchy::leaves(int step, std::uint32_t count, bool on_gpu) {
     const std::uint32_t leaf_pairs = count;
-    if (shadow_) {
+    if (shadow_ || speculative_) {   // a speculative batch: a hit past the list's end marks the group
         leaf_dispatch(step, 0, count, on_gpu);
         return;
     }
@@ -259,10 +263,13 @@ void GpuRayHierarchy::leaf_dispatch(int step, std::uint32_t first, std::uint32_t
     p.set("rh_batch_first", unsigned(in.first));
     p.set("rh_sphere_test", options.sphere_test ? 1u : 0u);
     p.set("rh_box_test", options.box_test ? 1u : 0u);
+    p.set("rh_hit_room", std::uint32_t(hit_capacity_));
+    p.set("rh_overflow_mark", group_mark_);
     dispatch_chunk(p, step, count, on_gpu);
 }
 
 void GpuRayHierarchy::prune_hits() {
+    fitted_ = false;   // the list was full, or nearly: a speculative try might not have fitted
     const std::uint32_t used = read_info(1);
     ++prunes;
     prune_flags_.reserve(hit_capacity_ * 4);
@@ -291,8 +298,10 @@ void GpuRayHierarchy::prune_hits() {
 // rounds run kFoldRoundsPerRead at a time with nothing read back: the select pass is dispatched indirectly for the
 // hit list's length (rh_args.comp), and a round with nothing left to fold changes nothing (no ray has a `next`). Only
 // then is the flag of the last select read: 0 means every ray was folded. Most rays list one hit, so one read per
-// batch is the rule.
-void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
+// batch is the rule. `first_look` (a speculative batch): the first read also takes the group mark and the hit list's
+// length (rh_info words 0 and 1, into *first_look); a mark returns false at once (the rounds changed nothing), true
+// when the batch is folded.
+bool GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in, std::vector<std::uint32_t>* first_look) {
     std::optional<gpu::GpuTimer::Scope> timed;
     if (timer) timed.emplace(*timer, "rh_local.fold");
     const std::uint32_t n = std::uint32_t(in.count);
@@ -309,7 +318,7 @@ void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
     state_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
     in.wavefront.set_uniforms(fold_);
     fold_.set("rh_batch_first", unsigned(in.first));
-    do {
+    for (;;) {
         for (int round = 0; round < kFoldRoundsPerRead; ++round) {
             const std::uint32_t zero = 0;
             info_.upload(&zero, 4, 8);
@@ -323,7 +332,16 @@ void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
             fold_.dispatch_threads(n);
             barrier();
         }
-    } while (read_info(2) != 0);
+        if (first_look) {
+            std::vector<std::uint32_t>& look = *first_look;
+            look = read_info(0, 3);
+            first_look = nullptr;
+            if (look[0] != 0) return false;
+            if (look[2] == 0) break;
+        } else if (read_info(2) == 0) {
+            break;
+        }
+    }
     fold_.set("rh_mode", 3u);
     fold_.set("rh_count", n);
     fold_.dispatch_threads(n);
@@ -333,6 +351,7 @@ void GpuRayHierarchy::fold(const gpu::BatchTraceInputs& in) {
     tally_pass_.set("rh_mode", 1u);
     tally_pass_.dispatch(1);
     barrier();
+    return true;
 }
 
 }  // namespace rt

@@ -17,6 +17,8 @@ struct HierarchyOptions {
     ObjectMode objects = ObjectMode::tree;   // --objects: what the top ray nodes meet (object_tree.h)
     std::size_t pair_capacity = 0;   // tests: entries per pair buffer (0 = from the storage limit, at most 2^20)
     int hit_list_per_ray = 4;        // tests: hit-list entries per ray of a batch (fewer force prunes)
+    bool speculate = true;           // tests: each batch first in one window per step, checked once after it
+                                     // (gpu_ray_hierarchy.h); false: every window cut from read-back lengths
     bool sphere_test = true;         // --sphere-test: each ray against a triangle's sphere before the exact test
     bool box_test = true;            // --box-test: a single ray against a triangle's or object node's box too
 };

@@ -26,6 +26,7 @@ void to_json(nlohmann::json& out, const HierarchyFrameStats& f) {
            {"pair_capacity", f.pair_capacity},
            {"chunks", f.chunks},
            {"windows", f.windows},
+           {"groups_retraced", f.groups_retraced},
            {"fold_rounds", f.fold_rounds},
            {"hit_list_prunes", f.hit_list_prunes}};
     nlohmann::json kinds = nlohmann::json::object();

@@ -47,6 +47,7 @@ struct HierarchyFrameStats {
     bool traced = false;            // whether any secondary ray was traced
     std::size_t pair_capacity = 0;
     std::uint64_t chunks = 0, windows = 0, fold_rounds = 0, hit_list_prunes = 0;
+    std::uint64_t groups_retraced = 0;   // groups a speculative try could not finish (gpu_ray_hierarchy.h)
     std::array<HierarchyKindStats, kRayKinds> kinds{};   // by RayKind; a kind without rays is left out
     std::array<HierarchyKindTimes, kRayKinds> times{};
     double fold_ms = 0.0;           // the closest-hit fold of reflection and refraction batches together

@@ -63,6 +63,7 @@ void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
     f.pair_capacity = hierarchy_->capacity();
     f.chunks = hierarchy_->chunks;
     f.windows = hierarchy_->windows;
+    f.groups_retraced = hierarchy_->groups_retraced;
     f.fold_rounds = hierarchy_->fold_rounds;
     f.hit_list_prunes = hierarchy_->prunes;
     for (int k = 1; k < kRayKinds; ++k) {

@@ -66,8 +66,9 @@ std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {
     return hits;
 }
 
-// Pair buffers of 256 entries and a hit list of 2 entries per ray: the traversal runs in many chunks and windows and
-// the hit list fills up and is pruned; the frame is the same, pair for pair, and so are the tests counted.
+// Pair buffers of 256 entries and a hit list of 2 entries per ray: the speculative tries run out of room and their
+// groups are traced again (gpu_ray_hierarchy.h), in many chunks and windows, and the hit list fills up and is pruned;
+// the frame is the same, pair for pair, and so are the tests counted. So it is without speculation.
 TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
     gpu::test_context();
     const Scene s = builtin_scene("cornell");
@@ -84,9 +85,18 @@ TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
     EXPECT_EQ(t["pair_capacity"], 256);
     EXPECT_GT(std::uint64_t(t["windows"]), 10 * std::uint64_t(r["windows"]));
     EXPECT_GT(std::uint64_t(t["hit_list_prunes"]), 0u);
+    EXPECT_GT(std::uint64_t(t["groups_retraced"]), 0u);
     for (const char* kind : {"shadow", "reflection", "refraction"})
         for (const char* key : {"node_tests", "local_tests", "fold_tests"})
             EXPECT_EQ(t["kinds"][kind][key], r["kinds"][kind][key]) << kind << " " << key;
+    tiny_options.speculate = false;
+    const FrameResult windowed = render_rh(s, settings, tiny_options);
+    expect_same_frame(windowed, reference, "256 pairs per buffer, no speculation");
+    EXPECT_EQ(windowed.stats.counters.intersection_tests, reference.stats.counters.intersection_tests);
+    EXPECT_EQ(windowed.extra["ray_hierarchy"]["groups_retraced"], 0);
+    for (const char* kind : {"shadow", "reflection", "refraction"})
+        for (const char* key : {"node_tests", "local_tests", "fold_tests"})
+            EXPECT_EQ(windowed.extra["ray_hierarchy"]["kinds"][kind][key], r["kinds"][kind][key]) << kind << " " << key;
 }
 
 // $RT_MAX_SSBO_BYTES = 48 KiB: the pipeline's batches, and the stage's buffers with them, shrink (3072 pairs). The

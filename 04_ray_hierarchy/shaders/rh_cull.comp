@@ -18,6 +18,9 @@
 // also writes the next step's indirect dispatch from the children's final count (the "last block" of a reduction:
 // every group counts itself done after its add, so the group that counts last has seen every add), which until
 // 2026-12-05 was a pass of its own (rh_args.comp), one dispatch more per step.
+// In a speculative batch (gpu_ray_hierarchy.cpp, trace) every step writes its children this way, into one
+// window of rh_window_room pairs: children past it are not written, the group is marked (rh_mark_overflow) and the
+// pass leaves the next step at most the window (rh_chunk_count), and the passes after the mark test nothing more.
 // rh_counts[i] packs the count (bits 0-12, at most 4096), that place (bits 13-30, at most 63 x 4096) and the side
 // split (bit 31: the object side).
 #include "rh_common.glsl"
@@ -37,6 +40,7 @@ layout(std430, binding = RH_BINDING_CULL_ORDER) readonly buffer Order { uint rh_
 layout(std430, binding = RH_BINDING_OFFSETS) writeonly buffer Args { uint rh_args[]; };   // as rh_args.comp's
 uniform uint rh_identity_order;  // as rh_expand.comp's
 uniform uint rh_args_first;      // where the next step's 3 dispatch arguments go
+uniform uint rh_window_room;     // pairs the next step's window holds
 shared uint rh_group_base;
 #else
 layout(std430, binding = RH_BINDING_COUNTS) writeonly buffer Counts { uint rh_counts[]; };
@@ -73,7 +77,7 @@ void main() {
     const uint i = rt_global_index();
     uvec2 p = uvec2(0u);
     uint n = 0u, place = 0u, split_objects = 0u;
-    if (i < rh_chunk_count()) {
+    if (i < rh_chunk_count() && !rh_overflowed()) {
         p = rh_pair(i);
         const uint level = rh_ray_level(p.x), index = rh_ray_index(p.x);
         const bool triangle = rh_is_triangle(p.y);
@@ -119,7 +123,9 @@ void main() {
         memoryBarrierBuffer();
         const uint groups = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z;
         if (atomicAdd(rh_info[RH_INFO_GROUPS_DONE], 1u) == groups - 1u) {
-            const uvec3 grid = rt_dispatch_size(atomicAdd(rh_info[rh_children_slot], 0u), 64u);
+            const uint children = atomicAdd(rh_info[rh_children_slot], 0u);
+            if (children > rh_window_room) rh_mark_overflow();
+            const uvec3 grid = rt_dispatch_size(min(children, rh_window_room), 64u);
             rh_args[rh_args_first] = grid.x;
             rh_args[rh_args_first + 1u] = grid.y;
             rh_args[rh_args_first + 2u] = grid.z;
@@ -139,6 +145,6 @@ void main() {
 #ifdef RH_CULL_WRITES_CHILDREN
     barrier();
     const uint base = rh_group_base + place;
-    if (n > 0u) rh_write_children(p, split_objects == 1u, base, base, base + n, 0u);
+    if (n > 0u) rh_write_children(p, split_objects == 1u, base, base, min(base + n, rh_window_room), 0u);
 #endif
 }

@@ -2,7 +2,9 @@
 // The closest-hit bookkeeping of a batch of rays (rh_closest.glsl), one mode per dispatch:
 //   0 init     per ray: no hit yet;
 //   1 select   per listed hit: within the tie range of its ray's closest t and not folded yet -> the lowest such
-//              triangle becomes the ray's `next` (atomicMin); rh_info[2] = 1 if any ray has one;
+//              triangle becomes the ray's `next` (atomicMin); rh_info[2] = 1 if any ray has one. Nothing in a
+//              speculative batch that ran out of room (rh_info.glsl: RH_INFO_OVERFLOW): its rounds change nothing,
+//              and the fold starts over once its groups were traced again;
 //   2 step     per ray: folds `next` as brute force would (tmax = the kept hit's t; replaced only when strictly
 //              closer), counting the test; a ray without a `next` is left as it is, so a round more than needed
 //              changes nothing (the CPU reads the flag only every few rounds);
@@ -28,7 +30,7 @@ uniform uint rh_batch_first;
 void main() {
     const uint i = rt_global_index();
     if (i >= rh_count) return;
-    if (rh_mode == 1u && i >= rh_info[RH_INFO_HITS]) return;   // dispatched indirectly for the list's length
+    if (rh_mode == 1u && (i >= rh_info[RH_INFO_HITS] || rh_overflowed())) return;   // indirect: the list's length
     if (rh_mode == 0u) {
         rh_state[i] = RhRayState(0x7f800000u, 0u, 0xffffffffu, -1, RT_INFINITY, 0.0, 0.0, 0u);
     } else if (rh_mode == 1u) {

@@ -1,7 +1,7 @@
 // The traversal's counters (rh_tally.comp adds the group's 64-bit counts to the frame's sums after each group; the
 // CPU reads a chunk's length only when it must cut the next step into windows). A 64-bit count is a (lo, hi) pair of
 // uints: rh_add64 carries into hi when lo wraps, so a group's pairs may pass 2^32.
-#define RH_INFO_SURVIVORS 0u      // unused
+#define RH_INFO_OVERFLOW 0u       // a speculative batch: 1 + the first group whose pairs or hits found no room
 #define RH_INFO_HITS 1u           // the hit list's length (closest hits)
 #define RH_INFO_FOLD 2u           // the fold's "some ray has a next hit" flag
 #define RH_INFO_GROUPS_DONE 3u    // rh_cull.comp's groups done (0 between passes: the last one resets it)
@@ -17,6 +17,12 @@
 #define RH_INFO_WORDS 224u
 
 layout(std430, binding = RH_BINDING_INFO) buffer Info { uint rh_info[]; };
+
+// A speculative batch (gpu_ray_hierarchy.cpp, trace): what did not fit its buffer was dropped, so this group
+// and every later one are traced again; the first group to find no room is the one named.
+uniform uint rh_overflow_mark;   // 1 + the group's place in the batch
+void rh_mark_overflow() { atomicCompSwap(rh_info[RH_INFO_OVERFLOW], 0u, rh_overflow_mark); }
+bool rh_overflowed() { return rh_info[RH_INFO_OVERFLOW] != 0u; }
 
 void rh_add64(uint index, uint value) {
     if (value == 0u) return;

@@ -25,6 +25,9 @@ uniform uint rh_group_first;    // wf_rays_in index of the group's ray 0
 uniform uint rh_batch_first;    // wf_rays_in index of the batch's ray 0 (results and state are per batch ray)
 uniform uint rh_sphere_test;    // 1: the sphere test first (--sphere-test on); 0: no sphere test
 uniform uint rh_box_test;       // 1: then the box test (--box-test on); 0: no box test
+#ifndef RH_SHADOW
+uniform uint rh_hit_room;       // the hit list's entries (a speculative batch marks a hit past them)
+#endif
 
 // The group's leaf pairs, box tests and exact tests, 8-bit fields of one word (64 pairs a group), so that a pair adds
 // its counts with one shared atomic instead of three (as in rh_cull.comp, where separate ones took about a quarter
@@ -38,7 +41,7 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) rh_group_counts = 0u;
     barrier();
     const uint i = rt_global_index();
-    const uvec2 p = i < rh_chunk_count() ? rh_pair(i) : uvec2(0xffffffffu, 0u);
+    const uvec2 p = i < rh_chunk_count() && !rh_overflowed() ? rh_pair(i) : uvec2(0xffffffffu, 0u);
     if (rh_ray_level(p.x) == 0u && rh_is_triangle(p.y)) {
         uint counts = RH_COUNT_LEAF;
         const uint ray_index = rh_group_first + rh_ray_index(p.x);
@@ -64,8 +67,13 @@ void main() {
             if (hit) {
                 const uint bits = floatBitsToUint(t);
                 const uint before = atomicMin(rh_state[slot].min_t, bits);
-                if (rh_near(t, min(before, bits)))
-                    rh_hits[atomicAdd(rh_info[RH_INFO_HITS], 1u)] = uvec4(slot, triangle, bits, 0u);
+                if (rh_near(t, min(before, bits))) {
+                    const uint at = atomicAdd(rh_info[RH_INFO_HITS], 1u);
+                    if (at < rh_hit_room)
+                        rh_hits[at] = uvec4(slot, triangle, bits, 0u);
+                    else
+                        rh_mark_overflow();
+                }
             }
 #endif
 #if defined(COUNT_TESTS) && defined(RECORD_TESTS_PER_PIXEL)

@@ -8,10 +8,11 @@ layout(std430, binding = RH_BINDING_PAIRS) readonly buffer Pairs { uvec2 rh_pair
 
 // The chunk's length: rh_count, or, when the CPU has not read it back (rh_count_slot > 0), what the previous step's
 // rh_cull.comp counted in rh_info[rh_count_slot] (the pass is then dispatched indirectly, from the arguments that
-// pass's last work group wrote).
+// pass's last work group wrote), at most rh_count, the window's room (a speculative batch may count more children
+// than its window holds: those past it were not written, and the group is traced again).
 uniform uint rh_count;
 uniform uint rh_count_slot;
-uint rh_chunk_count() { return rh_count_slot == 0u ? rh_count : rh_info[rh_count_slot]; }
+uint rh_chunk_count() { return rh_count_slot == 0u ? rh_count : min(rh_info[rh_count_slot], rh_count); }
 
 uniform uint rh_implicit;
 uniform uint rh_pair_first;

@@ -4,6 +4,8 @@
 //   mode 0, after a group: rh_info's group counts (RH_INFO_EXACT .. RH_INFO_BOX_TESTS, 64-bit each) are added to the
 //          group's kind, the sphere tests too (the leaf pairs, with --sphere-test on), and the exact tests to the
 //          pipeline's test counters (the total and the kind's), as the stage's other tests are;
+//          A group marked in a speculative batch (rh_info.glsl: RH_INFO_OVERFLOW), or one after it, adds nothing:
+//          it is traced again and adds its counts then;
 //   mode 1, after a batch's fold: its re-tests per ray kind (rh_info[RH_INFO_FOLD_TESTS + kind]).
 // One thread per 64-bit word pair, and the passes run one after another, so plain adds with a carry suffice.
 #include "rh_common.glsl"
@@ -32,6 +34,7 @@ void rh_tally_add(uint at, uint lo, uint hi) {
 
 void main() {
     const uint i = rt_global_index();
+    if (rh_mode == 0u && rh_overflowed()) return;   // the group is traced again: its counts then
     if (rh_mode == 0u) {
         const uint base = rh_kind * RH_TALLY_WORDS;
         if (i < RH_TALLY_GROUP_PAIRS) {
