@@ -151,13 +151,11 @@ void GpuRayHierarchy::trace(const gpu::BatchTraceInputs& in, bool shadow) {
 
     // Speculatively first (gpu_ray_hierarchy.h), then one look at the mark and at the hit list's length: for closest
     // hits the fold's first look at its flag, after its first rounds (which change nothing when a group is marked).
-    // The per-pixel test counts (--heatmap, --pixel) are added as the tests run, so a group traced twice would count
-    // twice: those frames take the windows' read-backs from the start.
+    // The per-pixel test counts (in.tests_per_pixel: --heatmap, and --pixel's watch list with them) are added as the
+    // tests run, so a group traced twice would count twice: those frames take the windows' read-backs from the start.
     const std::vector<Group> groups = find_groups(in);
-    const gpu::ShaderDefines& d = in.wavefront.defines();
     std::size_t& limit = speculation_limit_[shadow ? 1 : 0];
-    const bool speculate =
-        options.speculate && n < limit && !d.count("RECORD_TESTS_PER_PIXEL") && !d.count("WATCH_PIXEL");
+    const bool speculate = options.speculate && n < limit && in.tests_per_pixel == nullptr;
     fitted_ = true;
     trace_groups(groups, 0, speculate);
     bool folded = false;
