@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "common/gpu/gl/bindings.h"
 #include "common/gpu/pipeline/wavefront.h"
@@ -74,6 +75,7 @@ constexpr unsigned kBindingOrderFine = gpu::kBindingWavefrontTraversalFirst + 3;
 constexpr unsigned kBindingLeaves = gpu::kBindingWavefrontTraversalFirst + 4;
 constexpr std::size_t kCostWords = 8;   // three 64-bit width sums, then the leaves' radii
 constexpr std::size_t kTallySize = 6;   // OC_TALLY_SIZE
+constexpr std::size_t kTallyWords = 2 * kTallySize + 2 * kOrderRecords;   // the counts, then the records
 
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
@@ -103,7 +105,7 @@ void GpuOrderChoice::sum(const gpu::Buffer* order, unsigned slot, std::size_t fi
 
 void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first,
                             std::size_t count, gpu::Buffer& order, const gpu::Buffer* fine_order, int branching,
-                            float diagonal, int kind) {
+                            float diagonal, int kind, std::uint32_t record) {
     compile(defines);
     if (count == 0) return;
     if (!costs_) {
@@ -130,6 +132,7 @@ void GpuOrderChoice::choose(const gpu::ShaderDefines& defines, const gpu::Buffer
     choice_.set("oc_first", unsigned(first));
     choice_.set("oc_kind", unsigned(kind));
     choice_.set("oc_candidates", fine_order ? 2u : 1u);
+    choice_.set("oc_record", record < kOrderRecords ? std::uint32_t(kind) * kOrderRecords + record : kOrderNoRecord);
     choice_.dispatch_threads(count);
     barrier();
     gpu::check_gl("05_ray_sorting: order choice");
@@ -167,17 +170,24 @@ std::uint32_t GpuOrderChoice::width_cap() const {
     return order_width_cap(u64(v + 6), leaves_ ? leaf_count_ : 0u);
 }
 
-std::array<GpuOrderChoice::Tally, 2> GpuOrderChoice::tally() const {
-    std::uint32_t v[2 * kTallySize] = {};
-    if (tally_) tally_.download(v, sizeof v);
-    return {Tally{u64(v), u64(v + 2), u64(v + 4)}, Tally{u64(v + kTallySize), u64(v + kTallySize + 2),
-                                                        u64(v + kTallySize + 4)}};
+GpuOrderChoice::FrameTally GpuOrderChoice::tally() const {
+    std::vector<std::uint32_t> v(kTallyWords, 0);
+    for (std::size_t i = 2 * kTallySize; i < kTallyWords; ++i) v[i] = kOrderNoRecord;
+    if (tally_) tally_.download(v.data(), kTallyWords * 4);
+    FrameTally t;
+    for (std::size_t k = 0; k < 2; ++k) {
+        const std::uint32_t* w = v.data() + k * kTallySize;
+        t.kept[k] = {u64(w), u64(w + 2), u64(w + 4)};
+        std::copy_n(v.data() + 2 * kTallySize + k * kOrderRecords, kOrderRecords, t.choices[k].begin());
+    }
+    return t;
 }
 
 void GpuOrderChoice::reset_tally() {
-    const std::uint32_t zero[2 * kTallySize] = {};
-    if (!tally_) tally_ = gpu::Buffer(sizeof zero);
-    tally_.upload(zero, sizeof zero);
+    std::vector<std::uint32_t> v(kTallyWords, 0);
+    for (std::size_t i = 2 * kTallySize; i < kTallyWords; ++i) v[i] = kOrderNoRecord;
+    if (!tally_) tally_ = gpu::Buffer(kTallyWords * 4);
+    tally_.upload(v.data(), kTallyWords * 4);
 }
 
 }  // namespace rt

@@ -69,6 +69,11 @@ inline bool keep_sorted_order(std::uint64_t queue_cost, std::uint64_t sorted_cos
 // tie) if keep_sorted_order says so against the queue.
 int choose_order(std::uint64_t queue_cost, std::uint64_t sorted_cost, std::optional<std::uint64_t> fine_cost = {});
 
+// The choices of a frame's first kOrderRecords batches of each kind are recorded (order_choice.glsl: OC_RECORDS), so
+// the renderer can skip the sort of a batch whose queue order won the frame before (sorting_renderer.h).
+constexpr std::uint32_t kOrderRecords = 64;
+constexpr std::uint32_t kOrderNoRecord = 0xffffffffu;   // OC_NO_RECORD: no batch chose in that slot
+
 // The choice on the GPU: shaders/order_cost.comp sums the widths of each order, shaders/order_choice.comp writes the
 // chosen one into `order` (queue order first + i, the fine order, or `order` as it is). No read-back: the counts
 // reach the CPU with the stats.
@@ -76,9 +81,11 @@ class GpuOrderChoice {
 public:
     // rays[first, first + count) of the batch, `order` its sorted order (RaySorter::sort) and `fine_order` (or null)
     // its order by the finer direction cell; kind: 0 trace, 1 shadow. `defines`: the wavefront's (the passes read
-    // its rays through wavefront.glsl).
+    // its rays through wavefront.glsl). The choice is recorded in slot `record` of its kind (below kOrderRecords;
+    // kOrderNoRecord: not recorded).
     void choose(const gpu::ShaderDefines& defines, const gpu::Buffer& rays, std::size_t first, std::size_t count,
-                gpu::Buffer& order, const gpu::Buffer* fine_order, int branching, float diagonal, int kind);
+                gpu::Buffer& order, const gpu::Buffer* fine_order, int branching, float diagonal, int kind,
+                std::uint32_t record = kOrderNoRecord);
     // Per frame, before its batches: the bounding spheres the ray nodes meet last (`count` of them, `stride` vec4s
     // apart; GpuRayHierarchy::leaf_spheres), whose mean diameter caps every node's width (order_width_cap). Measured
     // by the next choose(), once. Until the first call, and with count 0, no cap.
@@ -88,11 +95,16 @@ public:
     // The last batch's sums: queue, sorted, fine (0 without one). A read-back: for the tests.
     std::array<std::uint64_t, 3> last_costs() const;
     // Per batch kind since reset_tally(): batches and rays that kept a sorted order, and batches that kept the fine
-    // one (a read-back).
+    // one; and each recorded slot's choice (0 queue, 1 sorted, 2 fine; kOrderNoRecord: none since the reset). One
+    // read-back for both.
     struct Tally {
         std::uint64_t batches = 0, rays = 0, fine_batches = 0;
     };
-    std::array<Tally, 2> tally() const;
+    struct FrameTally {
+        std::array<Tally, 2> kept{};
+        std::array<std::array<std::uint32_t, kOrderRecords>, 2> choices{};
+    };
+    FrameTally tally() const;
     void reset_tally();
 
 private:

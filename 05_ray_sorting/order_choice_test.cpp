@@ -138,9 +138,9 @@ TEST(GpuOrderChoice, KeepsATighterSortAndRefusesAWiderOne) {
         choice.choose({}, rays, c.first, c.sorted.size(), order, nullptr, 4, 3.0f, 1);
         const auto [queue, sorted, unused] = choice.last_costs();
         EXPECT_EQ(sorted < queue, keep) << c.name << ": queue " << queue << ", sorted " << sorted;
-        EXPECT_EQ(choice.tally()[1].batches, keep ? 1u : 0u) << c.name;
-        EXPECT_EQ(choice.tally()[1].rays, keep ? c.sorted.size() : 0u) << c.name;
-        EXPECT_EQ(choice.tally()[0].batches, 0u) << c.name << ": the trace batches' tally is apart";
+        EXPECT_EQ(choice.tally().kept[1].batches, keep ? 1u : 0u) << c.name;
+        EXPECT_EQ(choice.tally().kept[1].rays, keep ? c.sorted.size() : 0u) << c.name;
+        EXPECT_EQ(choice.tally().kept[0].batches, 0u) << c.name << ": the trace batches' tally is apart";
     }
 }
 
@@ -173,8 +173,8 @@ TEST(GpuOrderChoice, OfTwoSortedOrdersTheTighterIsKept) {
         }
         EXPECT_NE(expected, 0) << "a clustered order beats the interleaved queue";
         EXPECT_EQ(order.download<std::uint32_t>(n), expected == 0 ? queue_order : expected == 1 ? t.coarse : t.fine);
-        EXPECT_EQ(choice.tally()[0].fine_batches, expected == 2 ? 1u : 0u);
-        EXPECT_EQ(choice.tally()[0].batches, expected == 0 ? 0u : 1u);
+        EXPECT_EQ(choice.tally().kept[0].fine_batches, expected == 2 ? 1u : 0u);
+        EXPECT_EQ(choice.tally().kept[0].batches, expected == 0 ? 0u : 1u);
     }
     EXPECT_EQ(choose_order(100, 50, 40), 2);
     EXPECT_EQ(choose_order(100, 40, 40), 1) << "a tie goes to the coarse key";
@@ -278,7 +278,7 @@ TEST(GpuOrderChoice, NodesCountOnlyUpToTheLeavesDiameter) {
         EXPECT_LE(std::max(gpu_sorted, sorted) - std::min(gpu_sorted, sorted), 2 * nodes) << what;
         EXPECT_EQ(keep_sorted_order(gpu_queue, gpu_sorted), keep) << what << ": queue " << gpu_queue << ", sorted "
                                                                   << gpu_sorted << ", cap " << cap;
-        EXPECT_EQ(choice.tally()[1].batches, keep ? 1u : 0u) << what;
+        EXPECT_EQ(choice.tally().kept[1].batches, keep ? 1u : 0u) << what;
         // Measured once: a second batch of the frame reads the same cap.
         Buffer again = Buffer::from(c.sorted);
         choice.choose({}, rays, c.first, n, again, nullptr, 4, diagonal, 1);

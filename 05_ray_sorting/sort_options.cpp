@@ -49,6 +49,11 @@ void add_sort_options(CLI::App& app, SortOptions& options) {
                        "none under a shorter --key-bits)")
             ->capture_default_str()
             ->check(whole_number_in(0, 32));
+    app.add_option("--probe-every", options.probe_every,
+                   "With --sort auto, a batch whose queue order won is traced unsorted in the frames after, and "
+                   "sorted and measured again every this many frames (1: every batch sorted and measured every frame)")
+        ->capture_default_str()
+        ->check(whole_number_in(1, 10000));
     app.parse_complete_callback([&options, shadow_bits, fine_bits] {
         for (auto [name, bits, given] : {std::tuple{"--direction-bits", options.direction_bits, true},
                                          {"--shadow-direction-bits", options.shadow_direction_bits,

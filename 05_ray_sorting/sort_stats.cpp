@@ -28,7 +28,7 @@ void to_json(nlohmann::json& out, const SortFrameStats& f) {
     nlohmann::json batches = nlohmann::json::object();
     for (std::size_t k = 0; k < 2; ++k) {
         const SortBatchStats& s = f.batches[k];
-        if (s.batches == 0) continue;
+        if (s.batches == 0 && s.skipped_batches == 0) continue;
         batches[kBatchKind[k]] = {{"batches", s.batches},
                                   {"rays", s.rays},
                                   {"chunks", s.chunks},
@@ -36,9 +36,12 @@ void to_json(nlohmann::json& out, const SortFrameStats& f) {
                                   {"sorted_batches", f.kept[k].batches},
                                   {"sorted_rays", f.kept[k].rays},
                                   {"fine_batches", f.kept[k].fine_batches},
+                                  {"skipped_batches", s.skipped_batches},
+                                  {"skipped_rays", s.skipped_rays},
                                   {"sort_ms", f.sort_ms[k]}};
     }
     out["batches"] = batches;
+    if (o.mode == SortMode::automatic) out["probe_every"] = o.probe_every;
     out["gpu_cpu_syncs"] = f.gpu_cpu_syncs;
 }
 

@@ -15,7 +15,8 @@
 namespace rt {
 
 struct SortBatchStats {   // per batch kind: 0 = trace (reflection, refraction), 1 = shadow
-    std::uint64_t batches = 0, rays = 0, chunks = 0;
+    std::uint64_t batches = 0, rays = 0, chunks = 0;   // sorted (and, with auto, measured)
+    std::uint64_t skipped_batches = 0, skipped_rays = 0;   // auto: traced unsorted, their queue order having won
 };
 
 struct SortFrameStats {
@@ -23,7 +24,7 @@ struct SortFrameStats {
     unsigned shadow_direction_bits = 0, fine_direction_bits = 0;   // as used (the defaults give way to short keys)
     std::array<RayKeyLayout, 3> layouts{};                         // trace, shadow, trace's fine key
     std::array<SortBatchStats, 2> batches{};
-    std::array<GpuOrderChoice::Tally, 2> kept{};                   // batches whose sorted order was kept
+    std::array<GpuOrderChoice::Tally, 2> kept{};                   // sorted batches whose sorted order was kept
     std::array<double, 2> sort_ms{};
     // Read-backs of the sorting in the frame (each a wait for the GPU): none inside a batch, only its statistics'.
     // The frame's total is this plus ray_hierarchy's gpu_cpu_syncs.

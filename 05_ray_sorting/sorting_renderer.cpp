@@ -53,6 +53,7 @@ void RaySortingRenderer::compile() {
 void RaySortingRenderer::build(const Scene& scene, const RenderSettings& settings) {
     RayHierarchyRenderer::build(scene, settings);
     batch_stats_ = {};
+    batch_index_ = {};
     if (!sort_options.sorts()) return;
     compile();
     choice_.reset_tally();
@@ -72,6 +73,15 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
                                   lights, KeyOrder::direction_first);
 }
 
+bool RaySortingRenderer::skip_sort(bool shadow) {
+    const std::uint32_t slot = batch_index_[shadow ? 1 : 0];
+    if (sort_options.mode != SortMode::automatic || slot >= kOrderRecords) return false;
+    BatchMemory& m = memory_[shadow ? 1 : 0][slot];
+    if (!m.queue_won || m.unsorted + 1 >= sort_options.probe_every) return false;
+    ++m.unsorted;
+    return true;
+}
+
 void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
     if (!sort_options.sorts() || in.count == 0) {
         RayHierarchyRenderer::trace_batch(in, shadow);
@@ -80,6 +90,15 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     const std::size_t n = in.count;
     const unsigned stride = shadow ? 1u : unsigned(sizeof(gpu::WavefrontTraceResult) / 4);
     SortBatchStats& stats = batch_stats_[shadow ? 1 : 0];
+    const std::uint32_t slot = batch_index_[shadow ? 1 : 0];
+    if (skip_sort(shadow)) {   // its queue order won when last measured (memory_)
+        ++batch_index_[shadow ? 1 : 0];
+        stats.skipped_batches += 1;
+        stats.skipped_rays += n;
+        RayHierarchyRenderer::trace_batch(in, shadow);
+        return;
+    }
+    ++batch_index_[shadow ? 1 : 0];
     {
         auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
         sorter_->layout = layouts_[shadow ? 1 : 0];   // ray_keys.h: which order suits which rays
@@ -94,7 +113,7 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
                 sorter_->sort(in.rays, in.first, n, fine_order_);
             }
             choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, fine ? &fine_order_ : nullptr,
-                           hierarchy_options.branching, diagonal_, shadow ? 1 : 0);
+                           hierarchy_options.branching, diagonal_, shadow ? 1 : 0, slot);
         }
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
         gather_.set("rs_count", unsigned(n));
@@ -152,9 +171,14 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     }
     // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
     // them with --sort on (one key); with auto the GPU's choice, read here once per frame (one more sync).
+    // The same read-back brings each measured batch's choice, which the next frames remember (memory_).
     if (sort_options.mode == SortMode::automatic) {
-        f.kept = choice_.tally();
+        const GpuOrderChoice::FrameTally t = choice_.tally();
         ++f.gpu_cpu_syncs;
+        f.kept = t.kept;
+        for (std::size_t k = 0; k < 2; ++k)
+            for (std::size_t slot = 0; slot < kOrderRecords; ++slot)
+                if (t.choices[k][slot] != kOrderNoRecord) memory_[k][slot] = {t.choices[k][slot] == 0, 0};
     }
     if (sort_options.mode == SortMode::on)
         for (std::size_t k = 0; k < 2; ++k) f.kept[k] = {batch_stats_[k].batches, batch_stats_[k].rays};

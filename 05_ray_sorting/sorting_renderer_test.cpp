@@ -131,5 +131,68 @@ TEST(RaySortingRenderer, AutoGivesTheSameFrameAndKeepsTheSortOnlyWhereItIsTighte
     }
 }
 
+// --sort auto across frames: a batch whose queue order won is traced unsorted for probe_every - 1 frames, then sorted
+// and measured again; a batch that kept its sort is sorted every frame. The frames are all the same frame: the same
+// image and hits as --sort off, and the same hierarchy (node tests) as the first, fully measured one.
+TEST(RaySortingRenderer, AutoSkipsTheSortOfABatchWhoseQueueOrderWonUntilItsNextProbe) {
+    gpu::test_context();
+    for (const char* name : {"mirror_box", "whitted"}) {
+        const Scene s = builtin_scene(name);
+        const RenderSettings settings = test_frame_settings(s, 48, 36, true);
+        SortOptions off;
+        off.mode = SortMode::off;
+        const FrameResult reference = render_05(s, 48, 36, off);
+        RaySortingRenderer renderer;
+        renderer.sort_options.probe_every = 3;
+        std::vector<FrameResult> frames;
+        for (int f = 0; f < 5; ++f) frames.push_back(renderer.render(s, settings));
+        const auto count = [](const FrameResult& r, const char* kind, const char* key) -> std::uint64_t {
+            const auto& b = r.extra["ray_sorting"]["batches"];
+            return b.contains(kind) ? std::uint64_t(b[kind][key]) : 0u;
+        };
+        std::uint64_t queue_won = 0;
+        for (const char* kind : {"trace", "shadow"}) {
+            const std::uint64_t measured = count(frames[0], kind, "batches"), kept = count(frames[0], kind,
+                                                                                         "sorted_batches");
+            EXPECT_EQ(count(frames[0], kind, "skipped_batches"), 0u) << name << " " << kind << ": frame 1 measures all";
+            queue_won += measured - kept;
+            for (int f : {1, 2, 4}) {   // probe_every 3: frames 2, 3 and 5 skip; frame 4 measures every batch again
+                EXPECT_EQ(count(frames[std::size_t(f)], kind, "skipped_batches"), measured - kept) << name << " " << kind
+                                                                                                  << " frame " << f;
+                EXPECT_EQ(count(frames[std::size_t(f)], kind, "batches"), kept) << name << " " << kind << " " << f;
+                EXPECT_EQ(count(frames[std::size_t(f)], kind, "sorted_batches"), kept) << name << " " << kind;
+            }
+            EXPECT_EQ(count(frames[3], kind, "skipped_batches"), 0u) << name << " " << kind;
+            EXPECT_EQ(count(frames[3], kind, "batches"), measured) << name << " " << kind;
+        }
+        EXPECT_GT(queue_won, 0u) << name << ": some batch must keep the queue's order for the skip to be tried";
+        const auto counts = [](const FrameResult& r) {   // the hierarchy's counts per ray kind, not its times
+            nlohmann::json kinds = r.extra["ray_hierarchy"]["kinds"];
+            for (auto& [kind, k] : kinds.items()) k.erase("time_ms");
+            return kinds;
+        };
+        for (const FrameResult& f : frames) {
+            expect_same_frame(reference, f, name);
+            EXPECT_EQ(counts(f), counts(frames[0])) << name;
+            EXPECT_EQ(f.extra["ray_sorting"]["gpu_cpu_syncs"], 2u) << name << ": the choices come with the tally";
+        }
+    }
+}
+
+// --probe-every 1: every batch is sorted and measured in every frame.
+TEST(RaySortingRenderer, ProbeEveryFrameSortsEveryBatchEveryFrame) {
+    gpu::test_context();
+    const Scene s = builtin_scene("whitted");
+    const RenderSettings settings = test_frame_settings(s, 48, 36, true);
+    RaySortingRenderer renderer;
+    renderer.sort_options.probe_every = 1;
+    const FrameResult first = renderer.render(s, settings), second = renderer.render(s, settings);
+    for (const char* kind : {"trace", "shadow"}) {
+        EXPECT_EQ(second.extra["ray_sorting"]["batches"][kind]["skipped_batches"], 0u) << kind;
+        EXPECT_EQ(second.extra["ray_sorting"]["batches"][kind]["batches"],
+                  first.extra["ray_sorting"]["batches"][kind]["batches"]) << kind;
+    }
+}
+
 }  // namespace
 }  // namespace rt

@@ -3,7 +3,8 @@
 // fine direction cell), keep the tightest if its level-1 width sum (order_cost.comp) is below the queue's by more
 // than the margin (order_choice.glsl); otherwise queue order (order[i] = first + i), so the gather and scatter passes
 // after it, and the hierarchy, see the batch as stage 04 does. The result is written into oc_order. Decided on the
-// GPU: no read-back. Thread 0 tallies the choice (oc_tally, per batch kind), which the stats read once per frame.
+// GPU: no read-back. Thread 0 tallies the choice (oc_tally, per batch kind) and records it (oc_record), which the
+// renderer reads once per frame, with its statistics.
 #include "04_ray_hierarchy/shaders/rh_common.glsl"
 #include "order_choice.glsl"
 
@@ -18,6 +19,8 @@ uniform uint oc_count;
 uniform uint oc_first;
 uniform uint oc_kind;         // 0: trace batch, 1: shadow batch
 uniform uint oc_candidates;   // sorted orders: 1 (oc_order) or 2 (oc_order, then oc_order_fine)
+uniform uint oc_record;       // where the choice is recorded: a word of the records (OC_RECORDS per kind), or
+                              // OC_NO_RECORD
 
 void oc_add64(uint at, uint value) {
     const uint old = atomicAdd(oc_tally[at], value);
@@ -45,6 +48,7 @@ void main() {
     const uint choice = oc_choice();
     if (choice == 0u) oc_order[i] = oc_first + i;
     if (choice == 2u) oc_order[i] = oc_order_fine[i];
+    if (i == 0u && oc_record < 2u * OC_RECORDS) oc_tally[2u * OC_TALLY_SIZE + oc_record] = choice;
     if (i == 0u && choice != 0u) {
         oc_add64(OC_TALLY_SIZE * oc_kind, 1u);
         oc_add64(OC_TALLY_SIZE * oc_kind + 2u, oc_count);

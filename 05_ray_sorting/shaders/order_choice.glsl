@@ -7,10 +7,16 @@
                                                                  // then the leaves' radii (once per frame)
 #define OC_BINDING_TALLY (WF_BINDING_TRAVERSAL_FIRST + 2)        // uint[2 OC_TALLY_SIZE]: per batch kind (trace,
                                                                  // shadow) 64-bit counts: batches and rays that kept
-                                                                 // a sort, batches that kept the fine one
+                                                                 // a sort, batches that kept the fine one; then
+                                                                 // uint[2 OC_RECORDS]: each batch's choice
 #define OC_BINDING_ORDER_FINE (WF_BINDING_TRAVERSAL_FIRST + 3)   // uint[count]: the order by the fine direction cell
 #define OC_BINDING_LEAVES (WF_BINDING_TRAVERSAL_FIRST + 4)       // vec4[]: the spheres the ray nodes meet last
 #define OC_TALLY_SIZE 6u
+// The frame's choices, one word per batch (its kind's first OC_RECORDS batches): 0, 1 or 2 as oc_choice returns it,
+// OC_NO_RECORD where no batch chose. The renderer reads them with the tally and skips the sort of a batch whose
+// queue order won (order_choice.h: GpuOrderChoice::Frame).
+#define OC_RECORDS 64u
+#define OC_NO_RECORD 0xffffffffu
 
 // Width units per diagonal: a level-1 node's width in 1/4096 of the scene's diagonal, rounded down, at most
 // 4 diagonals (a wider node reaches everything anyway), so a sum of up to 2^20 nodes stays far inside 64 bits.
