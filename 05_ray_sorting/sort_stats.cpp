@@ -36,6 +36,7 @@ void to_json(nlohmann::json& out, const SortFrameStats& f) {
                                   {"sorted_batches", f.kept[k].batches},
                                   {"sorted_rays", f.kept[k].rays},
                                   {"fine_batches", f.kept[k].fine_batches},
+                                  {"measured_batches", s.measured_batches},
                                   {"skipped_batches", s.skipped_batches},
                                   {"skipped_rays", s.skipped_rays},
                                   {"sort_ms", f.sort_ms[k]}};

@@ -54,6 +54,7 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
     RayHierarchyRenderer::build(scene, settings);
     batch_stats_ = {};
     batch_index_ = {};
+    kept_ = {};
     if (!sort_options.sorts()) return;
     compile();
     choice_.reset_tally();
@@ -73,13 +74,13 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
                                   lights, KeyOrder::direction_first);
 }
 
-bool RaySortingRenderer::skip_sort(bool shadow) {
+int RaySortingRenderer::remembered_order(bool shadow) {
     const std::uint32_t slot = batch_index_[shadow ? 1 : 0];
-    if (sort_options.mode != SortMode::automatic || slot >= kOrderRecords) return false;
+    if (sort_options.mode != SortMode::automatic || slot >= kOrderRecords) return -1;
     BatchMemory& m = memory_[shadow ? 1 : 0][slot];
-    if (!m.queue_won || m.unsorted + 1 >= sort_options.probe_every) return false;
-    ++m.unsorted;
-    return true;
+    if (m.order < 0 || m.unmeasured + 1 >= sort_options.probe_every) return -1;
+    ++m.unmeasured;
+    return m.order;
 }
 
 void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
@@ -89,22 +90,28 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     }
     const std::size_t n = in.count;
     const unsigned stride = shadow ? 1u : unsigned(sizeof(gpu::WavefrontTraceResult) / 4);
-    SortBatchStats& stats = batch_stats_[shadow ? 1 : 0];
-    const std::uint32_t slot = batch_index_[shadow ? 1 : 0];
-    if (skip_sort(shadow)) {   // its queue order won when last measured (memory_)
-        ++batch_index_[shadow ? 1 : 0];
+    const int kind = shadow ? 1 : 0;
+    SortBatchStats& stats = batch_stats_[std::size_t(kind)];
+    const std::uint32_t slot = batch_index_[std::size_t(kind)];
+    const int remembered = remembered_order(shadow);   // memory_: -1 measure, else the order that won
+    ++batch_index_[std::size_t(kind)];
+    if (remembered == 0) {   // the queue's order won when last measured: stage 04's trace, nothing more
         stats.skipped_batches += 1;
         stats.skipped_rays += n;
         RayHierarchyRenderer::trace_batch(in, shadow);
         return;
     }
-    ++batch_index_[shadow ? 1 : 0];
     {
-        auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
-        sorter_->layout = layouts_[shadow ? 1 : 0];   // ray_keys.h: which order suits which rays
-        sorter_->tally_slot = shadow ? 1 : 0;          // the chunk counts per batch kind, summed on the GPU
+        auto timed = timer().scope(kSortPhase[kind]);
+        // ray_keys.h: which order suits which rays; a remembered fine order is sorted by the fine key alone.
+        sorter_->layout = layouts_[remembered == 2 ? 2 : std::size_t(kind)];
+        sorter_->tally_slot = std::size_t(kind);   // the chunk counts per batch kind, summed on the GPU
         sorter_->sort(in.rays, in.first, n, order_);
-        if (sort_options.mode == SortMode::automatic) {
+        if (remembered > 0) {   // a sorted order won when last measured: keep it, unmeasured
+            kept_[std::size_t(kind)].batches += 1;
+            kept_[std::size_t(kind)].rays += n;
+            if (remembered == 2) kept_[std::size_t(kind)].fine_batches += 1;
+        } else if (sort_options.mode == SortMode::automatic) {
             // Reflection and refraction rays: a second order by the finer direction cell, for the choice.
             const bool fine = !shadow && fine_direction_bits() > 0;
             if (fine) {
@@ -113,7 +120,8 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
                 sorter_->sort(in.rays, in.first, n, fine_order_);
             }
             choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, fine ? &fine_order_ : nullptr,
-                           hierarchy_options.branching, diagonal_, shadow ? 1 : 0, slot);
+                           hierarchy_options.branching, diagonal_, kind, slot);
+            stats.measured_batches += 1;
         }
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
         gather_.set("rs_count", unsigned(n));
@@ -175,10 +183,12 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     if (sort_options.mode == SortMode::automatic) {
         const GpuOrderChoice::FrameTally t = choice_.tally();
         ++f.gpu_cpu_syncs;
-        f.kept = t.kept;
-        for (std::size_t k = 0; k < 2; ++k)
+        for (std::size_t k = 0; k < 2; ++k) {
+            f.kept[k] = {t.kept[k].batches + kept_[k].batches, t.kept[k].rays + kept_[k].rays,
+                         t.kept[k].fine_batches + kept_[k].fine_batches};
             for (std::size_t slot = 0; slot < kOrderRecords; ++slot)
-                if (t.choices[k][slot] != kOrderNoRecord) memory_[k][slot] = {t.choices[k][slot] == 0, 0};
+                if (t.choices[k][slot] != kOrderNoRecord) memory_[k][slot] = {int(t.choices[k][slot]), 0};
+        }
     }
     if (sort_options.mode == SortMode::on)
         for (std::size_t k = 0; k < 2; ++k) f.kept[k] = {batch_stats_[k].batches, batch_stats_[k].rays};

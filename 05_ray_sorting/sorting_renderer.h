@@ -4,7 +4,7 @@
 // hits and the ray counts) cannot tell the difference; only the hierarchy's cost changes. --sort off is stage 04;
 // --sort auto (the default) keeps a batch's sorted order only when it makes the hierarchy's lowest nodes tighter
 // than the queue's order (order_choice.h), so sorting never widens the nodes it was meant to tighten; and a batch
-// whose queue order won is not sorted in the frames after, until --probe-every frames have passed (below).
+// takes the order that won without measuring again, until --probe-every frames have passed (below).
 #pragma once
 
 #include <array>
@@ -51,18 +51,20 @@ private:
     std::array<SortBatchStats, 2> batch_stats_{};
 
     // --sort auto across frames. A sort costs about 30 passes whether its order is kept or not (on llvmpipe 2-5 ms
-    // a batch on the benchmark scenes, more than the whole trace of a small one), and from one frame to the next a
-    // batch's rays come from the same surfaces, camera and lights: the order that won stays the winner. So the k-th
-    // batch of a kind remembers what its choice was (recorded on the GPU, read with the frame's statistics: no extra
-    // read-back), and one whose queue order won is traced unsorted, exactly as stage 04 traces it, for the next
-    // probe_every - 1 frames; then it is sorted and measured again. A batch that kept a sort is sorted every frame.
+    // a batch on the benchmark scenes, more than the whole trace of a small one), and a reflection or refraction
+    // batch is sorted twice to be measured; from one frame to the next a batch's rays come from the same surfaces,
+    // camera and lights, so the order that won stays the winner. So the k-th batch of a kind remembers which order
+    // won (recorded on the GPU, read with the frame's statistics: no extra read-back), and for the next
+    // probe_every - 1 frames takes it unmeasured: the queue's order (traced exactly as stage 04 traces it, no sort)
+    // or the one sorted order that won (one sort, no measure); then it is measured again.
     struct BatchMemory {
-        bool queue_won = false;   // the last measured choice was the queue's order
-        unsigned unsorted = 0;    // frames traced unsorted since
+        int order = -1;            // the last measured choice: 0 queue, 1 sorted, 2 fine; -1 none yet
+        unsigned unmeasured = 0;   // frames it was taken unmeasured since
     };
     std::array<std::array<BatchMemory, kOrderRecords>, 2> memory_{};
-    std::array<std::uint32_t, 2> batch_index_{};   // the frame's batches of each kind so far
-    bool skip_sort(bool shadow);                   // this batch's memory says: trace it unsorted
+    std::array<std::uint32_t, 2> batch_index_{};        // the frame's batches of each kind so far
+    std::array<GpuOrderChoice::Tally, 2> kept_{};       // the frame's batches sorted by a remembered order
+    int remembered_order(bool shadow);                  // this batch's: -1 (measure it) or the order to take
 };
 
 }  // namespace rt

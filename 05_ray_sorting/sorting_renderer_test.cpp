@@ -131,12 +131,14 @@ TEST(RaySortingRenderer, AutoGivesTheSameFrameAndKeepsTheSortOnlyWhereItIsTighte
     }
 }
 
-// --sort auto across frames: a batch whose queue order won is traced unsorted for probe_every - 1 frames, then sorted
-// and measured again; a batch that kept its sort is sorted every frame. The frames are all the same frame: the same
-// image and hits as --sort off, and the same hierarchy (node tests) as the first, fully measured one.
-TEST(RaySortingRenderer, AutoSkipsTheSortOfABatchWhoseQueueOrderWonUntilItsNextProbe) {
+// --sort auto across frames: each batch takes the order that won when it was last measured (the queue's: no sort at
+// all; a sorted one: that one sort, no second key, no measure) for probe_every - 1 frames, then it is measured again.
+// The frames are all the same frame: the same image and hits as --sort off, and the same hierarchy (node tests) as the
+// first, fully measured one, so every batch took the order its measure chose (absorption keeps fine orders,
+// mirror_box coarse ones, and both leave some batches in queue order).
+TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
     gpu::test_context();
-    for (const char* name : {"mirror_box", "whitted"}) {
+    for (const char* name : {"absorption", "mirror_box"}) {
         const Scene s = builtin_scene(name);
         const RenderSettings settings = test_frame_settings(s, 48, 36, true);
         SortOptions off;
@@ -150,22 +152,29 @@ TEST(RaySortingRenderer, AutoSkipsTheSortOfABatchWhoseQueueOrderWonUntilItsNextP
             const auto& b = r.extra["ray_sorting"]["batches"];
             return b.contains(kind) ? std::uint64_t(b[kind][key]) : 0u;
         };
-        std::uint64_t queue_won = 0;
+        std::uint64_t queue_won = 0, sorted = 0;
         for (const char* kind : {"trace", "shadow"}) {
-            const std::uint64_t measured = count(frames[0], kind, "batches"), kept = count(frames[0], kind,
-                                                                                         "sorted_batches");
-            EXPECT_EQ(count(frames[0], kind, "skipped_batches"), 0u) << name << " " << kind << ": frame 1 measures all";
-            queue_won += measured - kept;
-            for (int f : {1, 2, 4}) {   // probe_every 3: frames 2, 3 and 5 skip; frame 4 measures every batch again
-                EXPECT_EQ(count(frames[std::size_t(f)], kind, "skipped_batches"), measured - kept) << name << " " << kind
-                                                                                                  << " frame " << f;
-                EXPECT_EQ(count(frames[std::size_t(f)], kind, "batches"), kept) << name << " " << kind << " " << f;
-                EXPECT_EQ(count(frames[std::size_t(f)], kind, "sorted_batches"), kept) << name << " " << kind;
+            const std::uint64_t all = count(frames[0], kind, "batches"), kept = count(frames[0], kind,
+                                                                                    "sorted_batches");
+            const std::uint64_t fine = count(frames[0], kind, "fine_batches");
+            for (int f : {0, 3}) {   // probe_every 3: frames 1 and 4 measure every batch
+                const FrameResult& r = frames[std::size_t(f)];
+                EXPECT_EQ(count(r, kind, "measured_batches"), all) << name << " " << kind << " frame " << f + 1;
+                EXPECT_EQ(count(r, kind, "skipped_batches"), 0u) << name << " " << kind << " frame " << f + 1;
             }
-            EXPECT_EQ(count(frames[3], kind, "skipped_batches"), 0u) << name << " " << kind;
-            EXPECT_EQ(count(frames[3], kind, "batches"), measured) << name << " " << kind;
+            queue_won += all - kept;
+            sorted += kept;
+            for (int f : {1, 2, 4}) {   // frames 2, 3 and 5 take the orders frame 1 (or 4) chose
+                const FrameResult& r = frames[std::size_t(f)];
+                EXPECT_EQ(count(r, kind, "measured_batches"), 0u) << name << " " << kind << " frame " << f + 1;
+                EXPECT_EQ(count(r, kind, "skipped_batches"), all - kept) << name << " " << kind << " frame " << f + 1;
+                EXPECT_EQ(count(r, kind, "batches"), kept) << name << " " << kind << " frame " << f + 1;
+                EXPECT_EQ(count(r, kind, "sorted_batches"), kept) << name << " " << kind << " frame " << f + 1;
+                EXPECT_EQ(count(r, kind, "fine_batches"), fine) << name << " " << kind << " frame " << f + 1;
+            }
         }
-        EXPECT_GT(queue_won, 0u) << name << ": some batch must keep the queue's order for the skip to be tried";
+        EXPECT_GT(queue_won, 0u) << name << ": some batch must keep the queue's order";
+        EXPECT_GT(sorted, 0u) << name << ": some batch must keep a sorted order";
         const auto counts = [](const FrameResult& r) {   // the hierarchy's counts per ray kind, not its times
             nlohmann::json kinds = r.extra["ray_hierarchy"]["kinds"];
             for (auto& [kind, k] : kinds.items()) k.erase("time_ms");
@@ -177,6 +186,12 @@ TEST(RaySortingRenderer, AutoSkipsTheSortOfABatchWhoseQueueOrderWonUntilItsNextP
             EXPECT_EQ(f.extra["ray_sorting"]["gpu_cpu_syncs"], 2u) << name << ": the choices come with the tally";
         }
     }
+    const Scene s = builtin_scene("absorption");
+    RaySortingRenderer renderer;
+    renderer.render(s, test_frame_settings(s, 48, 36, true));
+    const FrameResult second = renderer.render(s, test_frame_settings(s, 48, 36, true));
+    EXPECT_GT(std::uint64_t(second.extra["ray_sorting"]["batches"]["trace"]["fine_batches"]), 0u)
+        << "absorption's reflection and refraction batches keep the fine order, sorted by the fine key alone";
 }
 
 // --probe-every 1: every batch is sorted and measured in every frame.
