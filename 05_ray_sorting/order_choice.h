@@ -70,7 +70,7 @@ inline bool keep_sorted_order(std::uint64_t queue_cost, std::uint64_t sorted_cos
 int choose_order(std::uint64_t queue_cost, std::uint64_t sorted_cost, std::optional<std::uint64_t> fine_cost = {});
 
 // The choices of a frame's first kOrderRecords batches of each kind are recorded (order_choice.glsl: OC_RECORDS), so
-// the renderer can skip the sort of a batch whose queue order won the frame before (sorting_renderer.h).
+// the renderer can take the order that won in the next frames without measuring again (sorting_renderer.h).
 constexpr std::uint32_t kOrderRecords = 64;
 constexpr std::uint32_t kOrderNoRecord = 0xffffffffu;   // OC_NO_RECORD: no batch chose in that slot
 

@@ -50,8 +50,9 @@ void add_sort_options(CLI::App& app, SortOptions& options) {
             ->capture_default_str()
             ->check(whole_number_in(0, 32));
     app.add_option("--probe-every", options.probe_every,
-                   "With --sort auto, a batch whose queue order won is traced unsorted in the frames after, and "
-                   "sorted and measured again every this many frames (1: every batch sorted and measured every frame)")
+                   "With --sort auto, each batch takes the order that won when it was last measured (the queue's: "
+                   "no sort; a sorted one: its one sort) and is measured again every this many frames (1: every "
+                   "batch measured every frame)")
         ->capture_default_str()
         ->check(whole_number_in(1, 10000));
     app.parse_complete_callback([&options, shadow_bits, fine_bits] {

@@ -23,12 +23,12 @@ struct SortOptions {
     unsigned shadow_direction_bits = 12; // --shadow-direction-bits: the direction cell below a shadow key's origin
     unsigned fine_direction_bits = 8;    // --fine-direction-bits: --sort auto's second reflection/refraction key
                                          // (0 or = direction_bits: none)
-    unsigned probe_every = 8;            // --probe-every: with auto, how often a batch whose queue order won the
-                                         // last time it was measured is sorted and measured again (frames)
+    unsigned probe_every = 8;            // --probe-every: with auto, every how many frames a batch is measured
+                                         // again (between, it takes the order that won: sorting_renderer.h)
 };
 
-// --sort, --key-bits, --direction-bits, --shadow-direction-bits, --fine-direction-bits and --probe-every, written into `options`
-// when parsed; a direction width given above --key-bits is refused once the line is parsed.
+// --sort, --key-bits, --direction-bits, --shadow-direction-bits, --fine-direction-bits and --probe-every, written
+// into `options` when parsed; a direction width given above --key-bits is refused once the line is parsed.
 void add_sort_options(CLI::App& app, SortOptions& options);
 
 }  // namespace rt

@@ -13,8 +13,8 @@
 #define OC_BINDING_LEAVES (WF_BINDING_TRAVERSAL_FIRST + 4)       // vec4[]: the spheres the ray nodes meet last
 #define OC_TALLY_SIZE 6u
 // The frame's choices, one word per batch (its kind's first OC_RECORDS batches): 0, 1 or 2 as oc_choice returns it,
-// OC_NO_RECORD where no batch chose. The renderer reads them with the tally and skips the sort of a batch whose
-// queue order won (order_choice.h: GpuOrderChoice::Frame).
+// OC_NO_RECORD where no batch chose. The renderer reads them with the tally, and until a batch is measured again it
+// takes the order that won (sorting_renderer.h: BatchMemory).
 #define OC_RECORDS 64u
 #define OC_NO_RECORD 0xffffffffu
 
