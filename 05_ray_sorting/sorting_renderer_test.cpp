@@ -194,6 +194,30 @@ TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
         << "absorption's reflection and refraction batches keep the fine order, sorted by the fine key alone";
 }
 
+// A frame with more batches of a kind than the records hold (kOrderRecords; a tiny storage limit cuts the queue into
+// many small batches): the batches past the records are measured every frame, the others remembered; the same frame.
+TEST(RaySortingRenderer, BatchesPastTheRecordsAreMeasuredEveryFrame) {
+    gpu::test_context();
+    const Scene s = builtin_scene("cornell");
+    const RenderSettings settings = test_frame_settings(s, 64, 48, true);
+    ::setenv("RT_MAX_SSBO_BYTES", "20000", 1);
+    SortOptions off;
+    off.mode = SortMode::off;
+    const FrameResult reference = render_05(s, 64, 48, off);
+    RaySortingRenderer renderer;
+    const FrameResult first = renderer.render(s, settings), second = renderer.render(s, settings);
+    ::unsetenv("RT_MAX_SSBO_BYTES");
+    const auto& a = first.extra["ray_sorting"]["batches"]["shadow"];
+    const auto& b = second.extra["ray_sorting"]["batches"]["shadow"];
+    const std::uint64_t batches = a["batches"];
+    ASSERT_GT(batches, std::uint64_t(kOrderRecords)) << "the frame must have more shadow batches than records";
+    EXPECT_EQ(std::uint64_t(a["measured_batches"]), batches);
+    EXPECT_EQ(std::uint64_t(b["measured_batches"]), batches - kOrderRecords);
+    EXPECT_EQ(std::uint64_t(b["batches"]) + std::uint64_t(b["skipped_batches"]), batches);
+    expect_same_frame(reference, first, "cornell");
+    expect_same_frame(reference, second, "cornell");
+}
+
 // --probe-every 1: every batch is sorted and measured in every frame.
 TEST(RaySortingRenderer, ProbeEveryFrameSortsEveryBatchEveryFrame) {
     gpu::test_context();
