@@ -80,6 +80,13 @@ constexpr std::size_t kTallyWords = 2 * kTallySize + 2 * kOrderRecords;   // the
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
 std::uint64_t u64(const std::uint32_t* lo_hi) { return std::uint64_t(lo_hi[1]) << 32 | lo_hi[0]; }
+
+// The tally buffer as reset_tally() leaves it: counts 0, no choice recorded.
+std::vector<std::uint32_t> empty_tally() {
+    std::vector<std::uint32_t> v(kTallyWords, 0);
+    std::fill(v.begin() + 2 * kTallySize, v.end(), kOrderNoRecord);
+    return v;
+}
 }  // namespace
 
 void GpuOrderChoice::compile(const gpu::ShaderDefines& defines) {
@@ -171,8 +178,7 @@ std::uint32_t GpuOrderChoice::width_cap() const {
 }
 
 GpuOrderChoice::FrameTally GpuOrderChoice::tally() const {
-    std::vector<std::uint32_t> v(kTallyWords, 0);
-    for (std::size_t i = 2 * kTallySize; i < kTallyWords; ++i) v[i] = kOrderNoRecord;
+    std::vector<std::uint32_t> v = empty_tally();
     if (tally_) tally_.download(v.data(), kTallyWords * 4);
     FrameTally t;
     for (std::size_t k = 0; k < 2; ++k) {
@@ -184,8 +190,7 @@ GpuOrderChoice::FrameTally GpuOrderChoice::tally() const {
 }
 
 void GpuOrderChoice::reset_tally() {
-    std::vector<std::uint32_t> v(kTallyWords, 0);
-    for (std::size_t i = 2 * kTallySize; i < kTallyWords; ++i) v[i] = kOrderNoRecord;
+    const std::vector<std::uint32_t> v = empty_tally();
     if (!tally_) tally_ = gpu::Buffer(kTallyWords * 4);
     tally_.upload(v.data(), kTallyWords * 4);
 }

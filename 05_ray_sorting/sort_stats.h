@@ -15,7 +15,7 @@
 namespace rt {
 
 struct SortBatchStats {   // per batch kind: 0 = trace (reflection, refraction), 1 = shadow
-    std::uint64_t batches = 0, rays = 0, chunks = 0;   // sorted (and, with auto, measured)
+    std::uint64_t batches = 0, rays = 0, chunks = 0;   // sorted (with auto: measured, or by a remembered order)
     std::uint64_t measured_batches = 0;   // auto: sorted by every key and measured (order_choice.h)
     std::uint64_t skipped_batches = 0, skipped_rays = 0;   // auto: traced unsorted, their queue order having won
 };

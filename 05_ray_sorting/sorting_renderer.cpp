@@ -74,10 +74,9 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
                                   lights, KeyOrder::direction_first);
 }
 
-int RaySortingRenderer::remembered_order(bool shadow) {
-    const std::uint32_t slot = batch_index_[shadow ? 1 : 0];
+int RaySortingRenderer::remembered_order(std::size_t kind, std::uint32_t slot) {
     if (sort_options.mode != SortMode::automatic || slot >= kOrderRecords) return -1;
-    BatchMemory& m = memory_[shadow ? 1 : 0][slot];
+    BatchMemory& m = memory_[kind][slot];
     if (m.order < 0 || m.unmeasured + 1 >= sort_options.probe_every) return -1;
     ++m.unmeasured;
     return m.order;
@@ -90,11 +89,10 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     }
     const std::size_t n = in.count;
     const unsigned stride = shadow ? 1u : unsigned(sizeof(gpu::WavefrontTraceResult) / 4);
-    const int kind = shadow ? 1 : 0;
-    SortBatchStats& stats = batch_stats_[std::size_t(kind)];
-    const std::uint32_t slot = batch_index_[std::size_t(kind)];
-    const int remembered = remembered_order(shadow);   // memory_: -1 measure, else the order that won
-    ++batch_index_[std::size_t(kind)];
+    const std::size_t kind = shadow ? 1 : 0;
+    SortBatchStats& stats = batch_stats_[kind];
+    const std::uint32_t slot = batch_index_[kind]++;
+    const int remembered = remembered_order(kind, slot);   // memory_: -1 measure, else the order that won
     if (remembered == 0) {   // the queue's order won when last measured: stage 04's trace, nothing more
         stats.skipped_batches += 1;
         stats.skipped_rays += n;
@@ -104,13 +102,13 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     {
         auto timed = timer().scope(kSortPhase[kind]);
         // ray_keys.h: which order suits which rays; a remembered fine order is sorted by the fine key alone.
-        sorter_->layout = layouts_[remembered == 2 ? 2 : std::size_t(kind)];
-        sorter_->tally_slot = std::size_t(kind);   // the chunk counts per batch kind, summed on the GPU
+        sorter_->layout = layouts_[remembered == 2 ? 2 : kind];
+        sorter_->tally_slot = kind;   // the chunk counts per batch kind, summed on the GPU
         sorter_->sort(in.rays, in.first, n, order_);
         if (remembered > 0) {   // a sorted order won when last measured: keep it, unmeasured
-            kept_[std::size_t(kind)].batches += 1;
-            kept_[std::size_t(kind)].rays += n;
-            if (remembered == 2) kept_[std::size_t(kind)].fine_batches += 1;
+            kept_[kind].batches += 1;
+            kept_[kind].rays += n;
+            if (remembered == 2) kept_[kind].fine_batches += 1;
         } else if (sort_options.mode == SortMode::automatic) {
             // Reflection and refraction rays: a second order by the finer direction cell, for the choice.
             const bool fine = !shadow && fine_direction_bits() > 0;
@@ -120,7 +118,7 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
                 sorter_->sort(in.rays, in.first, n, fine_order_);
             }
             choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, fine ? &fine_order_ : nullptr,
-                           hierarchy_options.branching, diagonal_, kind, slot);
+                           hierarchy_options.branching, diagonal_, int(kind), slot);
             stats.measured_batches += 1;
         }
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
@@ -139,7 +137,7 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     RayHierarchyRenderer::trace_batch({sorted_rays_, 0, n, sorted_results_, in.tests_per_pixel, in.wavefront, in.runs},
                                       shadow);
 
-    auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
+    auto timed = timer().scope(kSortPhase[kind]);
     scatter_.set("rs_count", unsigned(n));
     scatter_.set("rs_first", unsigned(in.first));
     scatter_.set("rs_stride", stride);
@@ -178,8 +176,9 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
         f.gpu_cpu_syncs = sorter_->syncs;
     }
     // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
-    // them with --sort on (one key); with auto the GPU's choice, read here once per frame (one more sync).
-    // The same read-back brings each measured batch's choice, which the next frames remember (memory_).
+    // them with --sort on (one key); with auto the measured batches' choices, tallied on the GPU and read here once
+    // per frame (one more sync), plus the batches sorted by a remembered order (kept_). The same read-back brings
+    // each measured batch's choice, which the next frames remember (memory_).
     if (sort_options.mode == SortMode::automatic) {
         const GpuOrderChoice::FrameTally t = choice_.tally();
         ++f.gpu_cpu_syncs;

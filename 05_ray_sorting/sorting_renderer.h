@@ -64,7 +64,8 @@ private:
     std::array<std::array<BatchMemory, kOrderRecords>, 2> memory_{};
     std::array<std::uint32_t, 2> batch_index_{};        // the frame's batches of each kind so far
     std::array<GpuOrderChoice::Tally, 2> kept_{};       // the frame's batches sorted by a remembered order
-    int remembered_order(bool shadow);                  // this batch's: -1 (measure it) or the order to take
+    // The k-th (slot) batch of a kind: -1 (measure it) or the order to take unmeasured.
+    int remembered_order(std::size_t kind, std::uint32_t slot);
 };
 
 }  // namespace rt
