@@ -26,14 +26,13 @@ void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<Obje
     object_nodes_ = 0;
     object_level_first_.clear();
     object_level_count_.clear();
-    if (!spheres_) spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp");
+    if (!spheres_) compile_spheres({});
     order_.reserve(4);   // bound by every expansion, read only with --objects tree
     objects_buf_.reserve(sizeof(ObjectNode));
     spheres_buf_.reserve(std::max<std::size_t>(triangles_, 1) * sizeof(glm::vec4));
     scene.bind();
     spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
     if (triangles_ == 0) return;
-    spheres_.set("rh_mode", 0u);
     spheres_.set("rh_count", unsigned(triangles_));
     spheres_.dispatch_threads(triangles_);
     barrier();
@@ -46,9 +45,8 @@ void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<Obje
         objects_buf_.reserve(nodes.size() * sizeof(ObjectNode));
         objects_buf_.upload(nodes.data(), nodes.size() * sizeof(ObjectNode));
         objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
-        spheres_.set("rh_mode", 1u);
-        spheres_.set("rh_count", unsigned(nodes.size()));
-        spheres_.dispatch_threads(nodes.size());
+        mesh_spheres_.set("rh_count", unsigned(nodes.size()));
+        mesh_spheres_.dispatch_threads(nodes.size());
         barrier();
         objects_ = object_nodes_ = nodes.size();
         object_level_first_ = {0};
@@ -59,9 +57,31 @@ void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<Obje
     gpu::check_gl("04_ray_hierarchy: bounding spheres and objects");
 }
 
+// One program per pass, each holding only its own code: on llvmpipe a pass over 1M triangles costs about what its
+// whole shader costs, so a mode uniform made every pass of the tree's build pay for the largest mode (ot_build.comp
+// as one program: 04's build 479 ms on MetalRoughSpheresNoTextures; one program a mode: 361 ms).
+void GpuRayHierarchy::compile_spheres(const gpu::ShaderDefines& defines) {
+    spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", defines);
+    gpu::ShaderDefines meshes = defines;
+    meshes.emplace("RH_MESH_SPHERES", "1");
+    mesh_spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", meshes);
+}
+
+void GpuRayHierarchy::compile_tree(const gpu::ShaderDefines& defines) {
+    for (int mode = 0; mode < kTreeModes; ++mode) {
+        gpu::ShaderDefines d = defines;
+        d.emplace("OT_MODE", std::to_string(mode));
+        tree_[std::size_t(mode)] = Program::compute("04_ray_hierarchy/shaders/ot_build.comp", d);
+    }
+}
+
 // object_tree.h: Morton codes of the spheres' centres, sorted; clusters; levels up to a single root.
 void GpuRayHierarchy::build_tree(const Bounds& bounds) {
-    if (!tree_) tree_ = Program::compute("04_ray_hierarchy/shaders/ot_build.comp");
+    if (!tree_[0]) compile_tree({});
+    const auto set = [&](const char* name, auto value) {   // a uniform of every mode's program
+        for (const Program& p : tree_) p.set(name, value);
+    };
+    const Program &codes = tree_[kTreeCodes], &cuts = tree_[kTreeCuts], &heads = tree_[kTreeHeads];
     if (!radix_) radix_ = std::make_unique<gpu::RadixSort>();
     const std::uint32_t n = std::uint32_t(triangles_);
     keys_.reserve(std::size_t(n) * 4);
@@ -69,11 +89,10 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
     keys_.bind(gpu::kWavefrontBindingTraversalFirst + 3);
     order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
-    tree_.set("ot_mode", 0u);
-    tree_.set("ot_count", n);
-    tree_.set("ot_box_min", bounds.lo);
-    tree_.set("ot_scale", morton_scale(bounds.lo, bounds.hi));
-    tree_.dispatch_threads(n);
+    codes.set("ot_count", n);
+    codes.set("ot_box_min", bounds.lo);
+    codes.set("ot_scale", morton_scale(bounds.lo, bounds.hi));
+    codes.dispatch_threads(n);
     barrier();
     radix_->sort(keys_, order_, n, 3 * kMortonAxisBits);
     // The levels (ot_build.comp modes 3, 4, 1/2 and a scan each): their sizes are the GPU's, so every level a tree of
@@ -115,9 +134,9 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     tree_codes_.reserve((std::size_t(kLevelVec4s) + 2 * std::size_t(half)) * 16);
     const std::vector<std::uint32_t> zero(4 * kLevelVec4s, 0u);
     tree_codes_.upload(zero.data(), zero.size() * 4);
-    tree_.set("ot_triangles", n);
-    tree_.set("ot_every_4", tree_every_4_ ? 1u : 0u);
-    tree_.set("ot_args_word", kArgsWord);
+    set("ot_triangles", n);
+    set("ot_every_4", tree_every_4_ ? 1u : 0u);
+    set("ot_args_word", kArgsWord);
     const auto bind = [&] {   // again after each scan, which binds its own buffers
         order_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
         spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
@@ -129,26 +148,24 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     for (std::size_t l = 0; l < sizes.size(); ++l) {
         const std::uint32_t below = l == 0 ? n : sizes[l - 1];
         bind();
-        tree_.set("ot_level", unsigned(l + 1));
-        tree_.set("ot_codes_in", kLevelVec4s + unsigned((l + 1) % 2) * half);
-        tree_.set("ot_codes_out", kLevelVec4s + unsigned(l % 2) * half);
-        tree_.set("ot_count", below);
+        set("ot_level", unsigned(l + 1));
+        set("ot_codes_in", kLevelVec4s + unsigned((l + 1) % 2) * half);
+        set("ot_codes_out", kLevelVec4s + unsigned(l % 2) * half);
+        set("ot_count", below);
         if (!tree_every_4_) {   // the cuts and their scan (every 4 nodes, mode 4 needs neither)
-            tree_.set("ot_mode", 3u);
-            tree_.dispatch_threads(below);
+            cuts.dispatch_threads(below);
             barrier();
             scan_.exclusive_flags(tree_groups_, tree_groups_, below, &tree_codes_, 0);   // the total to level word 0
             bind();
         }
-        tree_.set("ot_mode", 4u);
         if (l == 0)
-            tree_.dispatch_threads(below);
+            heads.dispatch_threads(below);
         else   // the nodes below: the level below's groups, as its mode 4 wrote them
-            tree_.dispatch_indirect(tree_codes_, args_offset(l - 1));
+            heads.dispatch_indirect(tree_codes_, args_offset(l - 1));
         barrier();
-        tree_.set("ot_mode", l == 0 ? 1u : 2u);
-        tree_.set("ot_count", sizes[l]);
-        tree_.dispatch_indirect(tree_codes_, args_offset(l));
+        const Program& nodes = tree_[l == 0 ? kTreeClusters : kTreeLevel];
+        nodes.set("ot_count", sizes[l]);
+        nodes.dispatch_indirect(tree_codes_, args_offset(l));
         barrier();
     }
     const std::vector<std::uint32_t> levels = tree_codes_.download<std::uint32_t>(2 + 2 * sizes.size());

@@ -83,8 +83,8 @@ const std::array<HierarchyKindStats, kRayKinds>& GpuRayHierarchy::stats() {
 void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     const gpu::ShaderDefines& d = wavefront.defines();
     if (d == compiled_for_ && spheres_) return;
-    spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", d);
-    tree_ = Program::compute("04_ray_hierarchy/shaders/ot_build.comp", d);
+    compile_spheres(d);
+    compile_tree(d);
     build_ = Program::compute("04_ray_hierarchy/shaders/rh_build.comp", d);
     cull_ = Program::compute("04_ray_hierarchy/shaders/rh_cull.comp", d);
     gpu::ShaderDefines writes_children = d;

@@ -128,9 +128,15 @@ private:
     std::string phase(const char* name) const;
 
     gpu::ShaderDefines compiled_for_;   // the wavefront defines the programs were compiled with
-    gpu::Program spheres_, tree_, build_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_,
+    gpu::Program spheres_, mesh_spheres_;   // rh_spheres.comp: per triangle; per mesh object (--objects meshes)
+    void compile_spheres(const gpu::ShaderDefines& defines);
+    gpu::Program build_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_,
         tally_pass_;
     gpu::Program cull_children_;   // rh_cull.comp writing the children itself (a step whose children fit one window)
+    // ot_build.comp, one program per mode (OT_MODE): codes, clusters, level, cuts, heads.
+    enum TreeMode { kTreeCodes, kTreeClusters, kTreeLevel, kTreeCuts, kTreeHeads, kTreeModes };
+    std::array<gpu::Program, kTreeModes> tree_;
+    void compile_tree(const gpu::ShaderDefines& defines);
     gpu::Scan scan_;   // the hit list's prune (prune_hits) and the tree's groups (build_tree)
     std::unique_ptr<gpu::RadixSort> radix_;   // the tree's sort (created with the first tree)
     gpu::Buffer spheres_buf_, objects_buf_, order_, keys_, nodes_, info_, state_, hits_, hits_tmp_, prune_flags_,

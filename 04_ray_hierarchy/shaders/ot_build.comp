@@ -1,6 +1,6 @@
 #version 450 core
 // The object tree, rebuilt every frame (object_tree.h; C++ twin: build_object_tree in object_tree.cpp), one mode per
-// dispatch after rh_spheres.comp has written the triangles' spheres:
+// dispatch (each mode its own program: OT_MODE) after rh_spheres.comp has written the triangles' spheres:
 //   0 codes     per triangle: the 30-bit Morton code of its sphere's centre (cubic cells over the scene box) and
 //               its id, for the shared radix sort (common/gpu/primitives/radix_sort.h), which sorts ids by code,
 //               stably;
@@ -39,7 +39,9 @@ layout(std430, binding = RH_BINDING_PAIRS_OUT) buffer Groups { uint ot_groups[];
 // groups z their first node below (mode 4).
 layout(std430, binding = RH_BINDING_COUNTS) buffer Codes { uvec4 ot_codes[]; };
 
-uniform uint ot_mode;
+// One program per mode (gpu_object_tree.cpp compiles this file with OT_MODE 0 to 4), so each holds only its own code:
+// a mode uniform made every pass over 1M triangles pay for the largest mode on llvmpipe (compile_spheres' comment).
+const uint ot_mode = OT_MODE;
 uniform uint ot_count;          // triangles (0), a bound of the nodes below (3, 4) or of the level's groups (1, 2)
 uniform uint ot_triangles;      // triangles in all
 uniform uint ot_level;          // modes 1-4: this level (1 = clusters)

@@ -1,8 +1,8 @@
 #version 450 core
-// The per-frame geometry input of stage 04. Mode 0: one thread per triangle writes its bounding sphere (with
-// --objects tree, ot_build.comp then builds the object tree over these spheres). Mode 1 (--objects meshes): one thread
-// per object (a run of at most 4096 consecutive triangles, ray_hierarchy_renderer.cpp) writes the sphere bounding its
-// triangles' spheres.
+// The per-frame geometry input of stage 04. One thread per triangle writes its bounding sphere (with --objects tree,
+// ot_build.comp then builds the object tree over these spheres). Compiled with RH_MESH_SPHERES (--objects meshes): one
+// thread per object (a run of at most 4096 consecutive triangles, ray_hierarchy_renderer.cpp) writes the sphere
+// bounding its triangles' spheres.
 #include "rh_common.glsl"
 #include "rh_triangles.glsl"
 
@@ -11,18 +11,16 @@ layout(local_size_x = 64) in;
 layout(std430, binding = RH_BINDING_SPHERES) buffer Spheres { vec4 rh_spheres[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) buffer Objects { RhObject rh_objects[]; };
 
-uniform uint rh_mode;
 uniform uint rh_count;
 
 void main() {
     const uint i = rt_global_index();
     if (i >= rh_count) return;
-    if (rh_mode == 0u) {
-        vec3 a, b, c;
-        rh_load_triangle(i, a, b, c);
-        rh_spheres[i] = rh_triangle_sphere(a, b, c);
-        return;
-    }
+#ifndef RH_MESH_SPHERES
+    vec3 a, b, c;
+    rh_load_triangle(i, a, b, c);
+    rh_spheres[i] = rh_triangle_sphere(a, b, c);
+#else
     RhObject o = rh_objects[i];
     vec3 lo = vec3(RT_INFINITY), hi = vec3(-RT_INFINITY);
     for (uint k = 0u; k < o.count; ++k) {
@@ -38,4 +36,5 @@ void main() {
     }
     o.sphere = vec4(m, r * (1.0 + RH_PAD) + RH_PAD * max(rh_max_abs(m), rh_max_abs(hi - lo)) + 1e-30);
     rh_objects[i] = o;
+#endif
 }
