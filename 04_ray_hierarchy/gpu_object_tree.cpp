@@ -57,9 +57,9 @@ void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<Obje
     gpu::check_gl("04_ray_hierarchy: bounding spheres and objects");
 }
 
-// One program per pass, each holding only its own code: on llvmpipe a pass over 1M triangles costs about what its
-// whole shader costs, so a mode uniform made every pass of the tree's build pay for the largest mode (ot_build.comp
-// as one program: 04's build 479 ms on MetalRoughSpheresNoTextures; one program a mode: 361 ms).
+// One program per pass, each holding only its own code. On llvmpipe the tree's passes ran faster so than as one
+// program switching on a mode uniform (ot_build.comp as one program: 04's build 479 ms a frame on
+// MetalRoughSpheresNoTextures; one program a mode: 361 ms; why, was not measured).
 void GpuRayHierarchy::compile_spheres(const gpu::ShaderDefines& defines) {
     spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", defines);
     gpu::ShaderDefines meshes = defines;

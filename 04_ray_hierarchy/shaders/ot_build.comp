@@ -39,8 +39,8 @@ layout(std430, binding = RH_BINDING_PAIRS_OUT) buffer Groups { uint ot_groups[];
 // groups z their first node below (mode 4).
 layout(std430, binding = RH_BINDING_COUNTS) buffer Codes { uvec4 ot_codes[]; };
 
-// One program per mode (gpu_object_tree.cpp compiles this file with OT_MODE 0 to 4), so each holds only its own code:
-// a mode uniform made every pass over 1M triangles pay for the largest mode on llvmpipe (compile_spheres' comment).
+// One program per mode (gpu_object_tree.cpp compiles this file with OT_MODE 0 to 4), so each holds only its own code
+// (faster on llvmpipe than a mode uniform: compile_spheres' comment).
 const uint ot_mode = OT_MODE;
 uniform uint ot_count;          // triangles (0), a bound of the nodes below (3, 4) or of the level's groups (1, 2)
 uniform uint ot_triangles;      // triangles in all
