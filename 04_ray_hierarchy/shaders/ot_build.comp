@@ -40,7 +40,7 @@ layout(std430, binding = RH_BINDING_PAIRS_OUT) buffer Groups { uint ot_groups[];
 layout(std430, binding = RH_BINDING_COUNTS) buffer Codes { uvec4 ot_codes[]; };
 
 // One program per mode (gpu_object_tree.cpp compiles this file with OT_MODE 0 to 4), so each holds only its own code
-// (faster on llvmpipe than a mode uniform: compile_spheres' comment).
+// (faster on llvmpipe than a mode uniform: the comment above compile_tree's twin, compile_spheres).
 const uint ot_mode = OT_MODE;
 uniform uint ot_count;          // triangles (0), a bound of the nodes below (3, 4) or of the level's groups (1, 2)
 uniform uint ot_triangles;      // triangles in all
