@@ -80,6 +80,24 @@ const std::array<HierarchyKindStats, kRayKinds>& GpuRayHierarchy::stats() {
     return stats_;
 }
 
+void GpuRayHierarchy::copy_tally(gpu::Buffer& dst, std::size_t offset) const {
+    rh_detail::barrier();   // the tally passes' writes, before the copy reads them
+    tally_.copy_to(dst, tally_bytes(), 0, offset);
+}
+
+std::size_t GpuRayHierarchy::tally_bytes() { return std::size_t(kRayKinds) * kTallyWords * sizeof(std::uint32_t); }
+
+std::uint64_t GpuRayHierarchy::tally_pairs(const std::uint32_t* tally) {
+    std::uint64_t pairs = 0;
+    for (int k = 0; k < kRayKinds; ++k) {
+        const std::uint32_t* w = tally + std::size_t(k) * kTallyWords;
+        auto sum = [&](std::uint32_t info_word) { return word64(w, info_word - kInfoExact); };
+        for (int l = 0; l < rh_detail::kMaxRayLevels; ++l) pairs += sum(kInfoLevelIn + 2 * std::uint32_t(l));
+        pairs += sum(kInfoLeafPairs);   // stats(): level 0's pairs_in gets the leaf pairs too
+    }
+    return pairs;
+}
+
 void GpuRayHierarchy::compile(const gpu::Wavefront& wavefront) {
     const gpu::ShaderDefines& d = wavefront.defines();
     if (d == compiled_for_ && spheres_) return;

@@ -67,6 +67,13 @@ public:
     // GPU (shaders/rh_tally.comp) and read here, once after the traces that made them (one sync).
     const std::array<HierarchyKindStats, kRayKinds>& stats();
     void reset_stats();
+    // What one trace cost the traversal, for a caller that compares two orders of a batch (stage 05's --sort auto):
+    // the GPU's running sums copied into `dst` at `offset` (tally_bytes() bytes; a copy on the GPU, no read-back)
+    // before and after the trace. tally_pairs() of the later copy minus that of the earlier is every pair the trace
+    // tested at every ray level, of every kind: node_tests() + leaf_pairs.
+    void copy_tally(gpu::Buffer& dst, std::size_t offset) const;
+    static std::size_t tally_bytes();
+    static std::uint64_t tally_pairs(const std::uint32_t* tally);
     std::uint64_t fold_rounds = 0, prunes = 0, chunks = 0, windows = 0;
     // Groups traced again since reset_stats(): a speculative try found no room in a window or the hit list.
     std::uint64_t groups_retraced = 0;

@@ -302,6 +302,61 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
     }
 }
 
+// What one trace tested, measured on the GPU (stage 05's check of its choice of order): the tally copied before and
+// after a trace, tally_pairs() of the later copy minus the earlier one's, is that trace's node tests + leaf pairs as
+// stats() counts them, every kind together; copies around a second trace (refraction rays, another beam) measure it
+// alone.
+TEST(GpuRayHierarchy, TallyCopiesMeasureTheTraceBetweenThem) {
+    gpu::test_context();
+    const TraceSetup setup("cornell");
+    const Scene& scene = setup.scene;
+    std::mt19937 g(5);
+    std::vector<gpu::WavefrontRay> rays;
+    for (std::uint32_t kind : {2u, 3u}) {   // reflection, then refraction: a coherent beam each
+        const glm::vec3 origin = scene.bounds.center() + 0.1f * ray_sets::unit(g), d = ray_sets::unit(g);
+        for (int i = 0; i < 500; ++i) {
+            gpu::WavefrontRay r{};
+            r.origin = origin + 0.01f * ray_sets::unit(g);
+            r.direction = glm::normalize(d + 0.2f * ray_sets::unit(g));
+            r.tmax = INFINITY;
+            r.depth_kind = kind << 16 | 1u;
+            rays.push_back(r);
+        }
+    }
+    const gpu::Buffer ray_buffer = gpu::Buffer::from(rays);
+    gpu::Buffer results(rays.size() * sizeof(gpu::WavefrontTraceResult));
+    GpuRayHierarchy h;
+    h.prepare(setup.gpu_scene, object_ranges(scene.material_ids), scene.bounds);
+    const std::size_t bytes = GpuRayHierarchy::tally_bytes();
+    gpu::Buffer copies(3 * bytes);
+    const auto pairs_in_stats = [&h] {
+        std::uint64_t n = 0;
+        for (const HierarchyKindStats& k : h.stats()) n += k.node_tests() + k.leaf_pairs;
+        return n;
+    };
+    std::uint64_t before = pairs_in_stats();
+    ASSERT_EQ(before, 0u);
+    std::vector<std::uint64_t> traced;
+    for (std::size_t t = 0; t < 2; ++t) {
+        h.copy_tally(copies, t * bytes);
+        h.trace({ray_buffer, t * 500, 500, results, nullptr, setup.wavefront, gpu::ray_runs(rays, t * 500, 500)},
+                false);
+        const std::uint64_t now = pairs_in_stats();
+        traced.push_back(now - before);
+        before = now;
+    }
+    h.copy_tally(copies, 2 * bytes);
+    const std::vector<std::uint32_t> words = copies.download<std::uint32_t>(3 * bytes / 4);
+    const auto at = [&](std::size_t c) { return GpuRayHierarchy::tally_pairs(words.data() + c * bytes / 4); };
+    EXPECT_EQ(at(0), 0u);
+    for (std::size_t t = 0; t < 2; ++t) {
+        EXPECT_GT(traced[t], 0u) << "trace " << t;
+        EXPECT_EQ(at(t + 1) - at(t), traced[t]) << "trace " << t;
+    }
+    EXPECT_GT(h.stats()[2].leaf_pairs, 0u);
+    EXPECT_GT(h.stats()[3].leaf_pairs, 0u);
+}
+
 // A batch is traced without a read-back inside it: the GPU sizes every step's dispatches from the counts it wrote
 // itself (the last work group of each step's rh_cull.comp), each step's children in one window. Shadow rays of one
 // light (one group, which the batch's runs name: nothing is read back to find it, one read-back until 2026-12-05):

@@ -81,6 +81,11 @@ void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDAT
 
 std::uint64_t u64(const std::uint32_t* lo_hi) { return std::uint64_t(lo_hi[1]) << 32 | lo_hi[0]; }
 
+// After the counts and records, the work copies: per slot, per kind, before and after (record_work).
+std::size_t work_offset(std::size_t kind, std::uint32_t record, bool after) {
+    return kTallyWords * 4 + ((std::size_t(record) * 2 + kind) * 2 + (after ? 1 : 0)) * GpuRayHierarchy::tally_bytes();
+}
+
 // The tally buffer as reset_tally() leaves it: counts 0, no choice recorded.
 std::vector<std::uint32_t> empty_tally() {
     std::vector<std::uint32_t> v(kTallyWords, 0);
@@ -178,21 +183,43 @@ std::uint32_t GpuOrderChoice::width_cap() const {
 }
 
 GpuOrderChoice::FrameTally GpuOrderChoice::tally() const {
+    // One read-back: the counts and records, and the work copies of the slots recorded.
+    const std::size_t bytes = work_offset(0, work_records_, false);
     std::vector<std::uint32_t> v = empty_tally();
-    if (tally_) tally_.download(v.data(), kTallyWords * 4);
+    v.resize(bytes / 4);
+    if (tally_) tally_.download(v.data(), bytes);
     FrameTally t;
     for (std::size_t k = 0; k < 2; ++k) {
         const std::uint32_t* w = v.data() + k * kTallySize;
         t.kept[k] = {u64(w), u64(w + 2), u64(w + 4)};
         std::copy_n(v.data() + 2 * kTallySize + k * kOrderRecords, kOrderRecords, t.choices[k].begin());
+        for (std::uint32_t r = 0; r < kOrderRecords; ++r) {
+            t.work[k][r] = kNoWork;
+            if (work_copied_[k][r] != 3) continue;   // both copies, or none
+            const auto pairs = [&](bool after) {
+                return GpuRayHierarchy::tally_pairs(v.data() + work_offset(k, r, after) / 4);
+            };
+            t.work[k][r] = pairs(true) - pairs(false);
+        }
     }
     return t;
 }
 
 void GpuOrderChoice::reset_tally() {
     const std::vector<std::uint32_t> v = empty_tally();
-    if (!tally_) tally_ = gpu::Buffer(kTallyWords * 4);
+    if (!tally_) tally_ = gpu::Buffer(work_offset(0, kOrderRecords, false));
     tally_.upload(v.data(), kTallyWords * 4);
+    work_copied_ = {};
+    work_records_ = 0;
+}
+
+void GpuOrderChoice::record_work(const GpuRayHierarchy& hierarchy, int kind, std::uint32_t record, bool after) {
+    if (record >= kOrderRecords) return;
+    if (!tally_) reset_tally();
+    const std::size_t k = kind == 0 ? 0 : 1;
+    hierarchy.copy_tally(tally_, work_offset(k, record, after));
+    work_copied_[k][record] = std::uint8_t(after ? work_copied_[k][record] | 2 : 1);
+    work_records_ = std::max(work_records_, record + 1);
 }
 
 }  // namespace rt

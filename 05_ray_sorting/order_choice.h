@@ -16,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "04_ray_hierarchy/gpu_ray_hierarchy.h"
 #include "04_ray_hierarchy/ray_hierarchy.h"
 #include "common/gpu/gl/buffer.h"
 #include "common/gpu/gl/shader.h"
@@ -103,9 +104,16 @@ public:
     struct FrameTally {
         std::array<Tally, 2> kept{};
         std::array<std::array<std::uint32_t, kOrderRecords>, 2> choices{};
+        // Per recorded slot, what its batch cost the hierarchy (record_work; kNoWork: not recorded since the reset).
+        std::array<std::array<std::uint64_t, kOrderRecords>, 2> work{};
     };
     FrameTally tally() const;
     void reset_tally();
+    // The check of a choice (sorting_renderer.h): the pairs the hierarchy tested for the batch of slot `record` of
+    // `kind`, in whatever order it was traced (GpuRayHierarchy::tally_pairs): its tally copied into this one's
+    // buffer before (`after` false) and after the trace, on the GPU; tally() brings the difference with the choices.
+    void record_work(const GpuRayHierarchy& hierarchy, int kind, std::uint32_t record, bool after);
+    static constexpr std::uint64_t kNoWork = UINT64_MAX;
 
 private:
     void compile(const gpu::ShaderDefines& defines);
@@ -118,6 +126,9 @@ private:
     const gpu::Buffer* leaves_ = nullptr;   // set_leaves(): the spheres, their count and stride
     std::uint32_t leaf_count_ = 0, leaf_stride_ = 1;
     bool leaves_measured_ = true;           // costs_ words 6, 7 hold their radii's sum
+    // Slots whose work was recorded since reset_tally(), before and after (bit 0, 1), and one past the highest.
+    std::array<std::array<std::uint8_t, kOrderRecords>, 2> work_copied_{};
+    std::uint32_t work_records_ = 0;
 };
 
 }  // namespace rt

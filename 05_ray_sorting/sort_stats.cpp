@@ -39,6 +39,8 @@ void to_json(nlohmann::json& out, const SortFrameStats& f) {
                                   {"measured_batches", s.measured_batches},
                                   {"skipped_batches", s.skipped_batches},
                                   {"skipped_rays", s.skipped_rays},
+                                  {"checked_batches", s.checked_batches},
+                                  {"sorts_dropped", s.sorts_dropped},
                                   {"sort_ms", f.sort_ms[k]}};
     }
     out["batches"] = batches;

@@ -77,6 +77,10 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
 int RaySortingRenderer::remembered_order(std::size_t kind, std::uint32_t slot) {
     if (sort_options.mode != SortMode::automatic || slot >= kOrderRecords) return -1;
     BatchMemory& m = memory_[kind][slot];
+    if (m.to_check > 0) {   // the frame after a measure that kept a sort: the queue's order, for the check
+        ++m.unmeasured;
+        return kCheckOrder;
+    }
     if (m.order < 0 || m.unmeasured + 1 >= sort_options.probe_every) return -1;
     ++m.unmeasured;
     return m.order;
@@ -93,10 +97,16 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     SortBatchStats& stats = batch_stats_[kind];
     const std::uint32_t slot = batch_index_[kind]++;
     const int remembered = remembered_order(kind, slot);   // memory_: -1 measure, else the order that won
-    if (remembered == 0) {   // the queue's order won when last measured: stage 04's trace, nothing more
+    if (remembered == 0 || remembered == kCheckOrder) {   // the queue's order: stage 04's trace, no sort
         stats.skipped_batches += 1;
         stats.skipped_rays += n;
+        const bool check = remembered == kCheckOrder;   // and what it tested, against the sort's (add_stage_stats)
+        if (check) {
+            stats.checked_batches += 1;
+            choice_.record_work(hierarchy(), int(kind), slot, false);
+        }
         RayHierarchyRenderer::trace_batch(in, shadow);
+        if (check) choice_.record_work(hierarchy(), int(kind), slot, true);
         return;
     }
     {
@@ -133,9 +143,13 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     stats.rays += n;
 
     sorted_results_.reserve(n * stride * 4);
+    // A measured batch's pairs, for the check of its choice (sorting_renderer.h); not needed without one.
+    const bool record = remembered < 0 && sort_options.mode == SortMode::automatic && sort_options.probe_every >= 3;
+    if (record) choice_.record_work(hierarchy(), int(kind), slot, false);
     // The same runs: the key's group field (ray_keys.h) sorts the groups in the queue's order, each its whole self.
     RayHierarchyRenderer::trace_batch({sorted_rays_, 0, n, sorted_results_, in.tests_per_pixel, in.wavefront, in.runs},
                                       shadow);
+    if (record) choice_.record_work(hierarchy(), int(kind), slot, true);
 
     auto timed = timer().scope(kSortPhase[kind]);
     scatter_.set("rs_count", unsigned(n));
@@ -178,15 +192,29 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
     // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
     // them with --sort on (one key); with auto the measured batches' choices, tallied on the GPU and read here once
     // per frame (one more sync), plus the batches sorted by a remembered order (kept_). The same read-back brings
-    // each measured batch's choice, which the next frames remember (memory_).
+    // each measured batch's choice, which the next frames remember (memory_), and the pairs of the batches whose
+    // kept sort is being checked (sorting_renderer.h).
     if (sort_options.mode == SortMode::automatic) {
         const GpuOrderChoice::FrameTally t = choice_.tally();
         ++f.gpu_cpu_syncs;
         for (std::size_t k = 0; k < 2; ++k) {
             f.kept[k] = {t.kept[k].batches + kept_[k].batches, t.kept[k].rays + kept_[k].rays,
                          t.kept[k].fine_batches + kept_[k].fine_batches};
-            for (std::size_t slot = 0; slot < kOrderRecords; ++slot)
-                if (t.choices[k][slot] != kOrderNoRecord) memory_[k][slot] = {int(t.choices[k][slot]), 0};
+            for (std::size_t slot = 0; slot < kOrderRecords; ++slot) {
+                BatchMemory& m = memory_[k][slot];
+                const std::uint64_t pairs = t.work[k][slot];
+                const bool recorded = pairs != GpuOrderChoice::kNoWork;
+                if (t.choices[k][slot] != kOrderNoRecord) {   // measured: a kept sort is checked next frame
+                    const int order = int(t.choices[k][slot]);
+                    const bool check = order > 0 && recorded;
+                    m = {order, 0, check ? order : 0, check ? pairs : 0};
+                } else if (m.to_check > 0 && recorded) {   // checked: the queue's order tested `pairs`
+                    const bool sort_won = m.sorted_pairs < pairs;
+                    if (!sort_won) f.batches[k].sorts_dropped += 1;
+                    m.order = sort_won ? m.to_check : 0;
+                    m.to_check = 0;
+                }
+            }
         }
     }
     if (sort_options.mode == SortMode::on)

@@ -57,14 +57,25 @@ private:
     // won (recorded on the GPU, read with the frame's statistics: no extra read-back), and for the next
     // probe_every - 1 frames takes it unmeasured: the queue's order (traced exactly as stage 04 traces it, no sort)
     // or the one sorted order that won (one sort, no measure); then it is measured again.
+    //
+    // The measure is a proxy (order_choice.h: the level-1 nodes' width), and a proxy can be wrong by a little (a
+    // sort kept on spheres:4 tested 0.1% more pairs than the queue's order). So a sort the measure keeps is checked
+    // against the real thing: the batch's pairs tested (node tests + leaf pairs, GpuRayHierarchy::tally_pairs) are
+    // recorded in the measured frame, the next frame traces the batch in the queue's order and records them again,
+    // and the sort is remembered only if it tested fewer. On a still scene the remembered order then never tests
+    // more pairs than stage 04, by construction; the check costs nothing but the checked frame's sort (it is stage
+    // 04's trace). With probe_every < 3 no check is made (there would be no frame left to use it).
+    static constexpr int kCheckOrder = 3;   // remembered_order: trace in the queue's order, to check a kept sort
     struct BatchMemory {
-        int order = -1;            // the last measured choice: 0 queue, 1 sorted, 2 fine; -1 none yet
+        int order = -1;            // the order to take: 0 queue, 1 sorted, 2 fine; -1 none yet
         unsigned unmeasured = 0;   // frames it was taken unmeasured since
+        int to_check = 0;          // the sorted order the last measure kept, still to be checked (0: none)
+        std::uint64_t sorted_pairs = 0;   // the pairs that order tested when measured
     };
     std::array<std::array<BatchMemory, kOrderRecords>, 2> memory_{};
     std::array<std::uint32_t, 2> batch_index_{};        // the frame's batches of each kind so far
     std::array<GpuOrderChoice::Tally, 2> kept_{};       // the frame's batches sorted by a remembered order
-    // The k-th (slot) batch of a kind: -1 (measure it) or the order to take unmeasured.
+    // The k-th (slot) batch of a kind: -1 (measure it), the order to take unmeasured, or kCheckOrder.
     int remembered_order(std::size_t kind, std::uint32_t slot);
 };
 
