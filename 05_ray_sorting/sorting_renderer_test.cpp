@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/testing/same_frame_expectations.h"
@@ -146,6 +147,20 @@ std::uint64_t sort_count(const FrameResult& r, const char* kind, const char* key
     return b.contains(kind) ? std::uint64_t(b[kind][key]) : 0u;
 }
 
+// `count` frames of the built-in scene `name` at 48x36, one renderer with --sort auto every `probe_every` frames;
+// `reference` gets the scene's --sort off frame (stage 04's).
+std::vector<FrameResult> auto_frames(const std::string& name, int count, unsigned probe_every, FrameResult& reference) {
+    const Scene s = builtin_scene(name);
+    SortOptions off;
+    off.mode = SortMode::off;
+    reference = render_05(s, 48, 36, off);
+    RaySortingRenderer renderer;
+    renderer.sort_options.probe_every = probe_every;
+    std::vector<FrameResult> frames;
+    for (int f = 0; f < count; ++f) frames.push_back(renderer.render(s, test_frame_settings(s, 48, 36, true)));
+    return frames;
+}
+
 // --sort auto across frames (sorting_renderer.h), probe_every 4: frame 1 measures every batch; frame 2 traces the
 // batches whose measure kept a sort in the queue's order, to check it (stage 04's frame exactly); frames 3 and 4 take
 // the orders that won, unmeasured: the queue's (no sort at all) or the kept sort that tested fewer pairs than the
@@ -156,15 +171,8 @@ std::uint64_t sort_count(const FrameResult& r, const char* kind, const char* key
 TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
     gpu::test_context();
     for (const char* name : {"absorption", "mirror_box"}) {
-        const Scene s = builtin_scene(name);
-        const RenderSettings settings = test_frame_settings(s, 48, 36, true);
-        SortOptions off;
-        off.mode = SortMode::off;
-        const FrameResult reference = render_05(s, 48, 36, off);
-        RaySortingRenderer renderer;
-        renderer.sort_options.probe_every = 4;
-        std::vector<FrameResult> frames;
-        for (int f = 0; f < 6; ++f) frames.push_back(renderer.render(s, settings));
+        FrameResult reference;
+        const std::vector<FrameResult> frames = auto_frames(name, 6, 4, reference);
         const auto counts = [](const FrameResult& r) {   // the hierarchy's counts per ray kind, not its times
             nlohmann::json kinds = r.extra["ray_hierarchy"]["kinds"];
             for (auto& [kind, k] : kinds.items()) k.erase("time_ms");
@@ -230,14 +238,8 @@ TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
 TEST(RaySortingRenderer, AfterTheCheckSortingNeverTestsMorePairsThanTheQueueOrder) {
     gpu::test_context();
     for (const char* name : {"spheres:4", "cornell", "whitted", "absorption", "mirror_box", "spheres:45"}) {
-        const Scene s = builtin_scene(name);
-        const RenderSettings settings = test_frame_settings(s, 48, 36, true);
-        SortOptions off;
-        off.mode = SortMode::off;
-        const FrameResult reference = render_05(s, 48, 36, off);
-        RaySortingRenderer renderer;
-        std::vector<FrameResult> frames;
-        for (int f = 0; f < 3; ++f) frames.push_back(renderer.render(s, settings));
+        FrameResult reference;
+        const std::vector<FrameResult> frames = auto_frames(name, 3, SortOptions{}.probe_every, reference);
         for (const FrameResult& f : frames) expect_same_frame(reference, f, name);
         EXPECT_EQ(pairs_tested(frames[1]), pairs_tested(reference)) << name << ": the check is stage 04's frame";
         EXPECT_LE(pairs_tested(frames[2]), pairs_tested(reference)) << name;
