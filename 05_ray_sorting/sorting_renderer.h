@@ -63,8 +63,8 @@ private:
     // against the real thing: the batch's pairs tested (node tests + leaf pairs, GpuRayHierarchy::tally_pairs) are
     // recorded in the measured frame, the next frame traces the batch in the queue's order and records them again,
     // and the sort is remembered only if it tested fewer. On a still scene the remembered order then never tests
-    // more pairs than stage 04, by construction; the check costs nothing but the checked frame's sort (it is stage
-    // 04's trace). With probe_every < 3 no check is made (there would be no frame left to use it).
+    // more pairs than stage 04, by construction; the check costs one frame's gain where the sort wins (the checked
+    // frame is stage 04's, with no sort). With probe_every < 3 no check is made (no frame would be left to use it).
     static constexpr int kCheckOrder = 3;   // remembered_order: trace in the queue's order, to check a kept sort
     struct BatchMemory {
         int order = -1;            // the order to take: 0 queue, 1 sorted, 2 fine; -1 none yet
