@@ -134,6 +134,54 @@ void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec
     EXPECT_GT(rejected, 1000u);
 }
 
+// The box test of ray nodes in GLSL (rh_node_box_test, used by rh_cull.comp), on every node of the adversarial ray
+// sets and two beams (levels built by the GLSL functions) against every triangle's box and walls': a node is culled
+// only when none of its rays passes its own box test (whose GLSL equals its twin:
+// RayTestsOfTheLeavesKeepEveryHitAndTheBoxTestEqualsItsTwin), so never a hit.
+TEST(GlslRayHierarchy, NodeBoxTestKeepsEveryNodeOneOfWhoseRaysPassesItsBoxTest) {
+    gpu::test_context();
+    static gpu::GlslTestHarness node_box("rh_node_box_test", R"(#include "04_ray_hierarchy/shaders/rh_common.glsl"
+void test_main() { out_b(0u, rh_node_box_test(RhNode(in_vec4(0u), in_vec4(4u)), in_vec3(8u), in_vec3(11u))); })");
+    std::size_t culled = 0;
+    for (const ray_sets::Case& c : ray_sets::with_beams())
+        for (int b : {4, 16}) {
+            const auto levels = glsl_build(c.rays, b);
+            const std::vector<glm::vec3> triangles = ray_sets::with_walls(c.triangles);
+            Words in;
+            struct Record {
+                std::size_t level, node, triangle;
+            };
+            std::vector<Record> records;
+            for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
+                const glm::vec3* v = &triangles[3 * t];
+                const glm::vec3 lo = glm::min(v[0], glm::min(v[1], v[2])), hi = glm::max(v[0], glm::max(v[1], v[2]));
+                for (std::size_t l = 1; l < levels.size(); ++l)
+                    for (std::size_t j = 0; j < levels[l].size(); ++j) {
+                        in << levels[l][j].sphere << levels[l][j].cone << lo << hi;
+                        records.push_back({l, j, t});
+                    }
+            }
+            const auto out = node_box.run(in.words, records.size(), 14, 1);
+            for (std::size_t k = 0; k < records.size(); ++k) {
+                if (out[k] != 0) continue;
+                ++culled;
+                const auto [l, j, t] = records[k];
+                const glm::vec3* v = &triangles[3 * t];
+                const glm::vec3 lo = glm::min(v[0], glm::min(v[1], v[2])), hi = glm::max(v[0], glm::max(v[1], v[2]));
+                std::size_t span = 1;
+                for (std::size_t e = 0; e < l; ++e) span *= std::size_t(b);
+                for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i) {
+                    const RhNode& leaf = levels[0][i];
+                    ASSERT_FALSE(!leaf.empty() &&
+                                 rh_ray_box_test(c.rays[i].origin, glm::vec3(leaf.cone), INFINITY, lo, hi))
+                        << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
+                    ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], v)) << c.name << " node " << j << " hits";
+                }
+            }
+        }
+    EXPECT_GT(culled, 1000u);
+}
+
 // The leaves' per-ray tests in GLSL on every (ray, triangle) pair of the adversarial sets (each ray unbounded or
 // ending short of the scene) and on rays aimed at triangles' edges and vertices: the sphere test and the box test
 // keep every pair the exact test hits, and the box test answers as its C++ twin.

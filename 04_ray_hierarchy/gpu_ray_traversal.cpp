@@ -109,7 +109,6 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         const Program& cull = chain ? cull_children_ : cull_;
         in_->rays.bind(gpu::kWavefrontBindingRaysIn);
         nodes_.bind(gpu::kWavefrontBindingTraversalFirst + 0);
-        spheres_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 1);
         objects_buf_.bind(gpu::kWavefrontBindingTraversalFirst + 2);
         if (!src.implicit) pairs_[step].bind(gpu::kWavefrontBindingTraversalFirst + 3);
         info_.bind(gpu::kWavefrontBindingTraversalFirst + 7);

@@ -34,8 +34,9 @@ void add_hierarchy_options(CLI::App& app, HierarchyOptions& options) {
         ->check(CLI::IsMember({"on", "off"}));
     app.add_option_function<std::string>(
            "--box-test", [&options](const std::string& s) { options.box_test = s == "on"; },
-           "After a sphere, test a single ray against the axis-aligned box too (a triangle's, or an object node's: "
-           "tight where a sphere is loose, on long, thin or large triangles): on (default) or off")
+           "After a sphere, test against the axis-aligned box too (a triangle's, or an object node's: tight where a "
+           "sphere is loose, on long, thin or large triangles), a single ray and a ray node alike: on (default) or "
+           "off")
         ->check(CLI::IsMember({"on", "off"}));
 }
 

@@ -20,7 +20,7 @@ struct HierarchyOptions {
     bool speculate = true;           // tests: each batch first in one window per step, checked once after it
                                      // (gpu_ray_hierarchy.h); false: every window cut from read-back lengths
     bool sphere_test = true;         // --sphere-test: each ray against a triangle's sphere before the exact test
-    bool box_test = true;            // --box-test: a single ray against a triangle's or object node's box too
+    bool box_test = true;            // --box-test: a ray or ray node against a triangle's or object node's box too
 };
 
 // --branching, --levels, --objects, --sphere-test and --box-test, written into `options` when parsed.

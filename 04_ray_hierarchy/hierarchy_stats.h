@@ -32,7 +32,7 @@ struct HierarchyKindStats {
     std::uint64_t local_tests = 0;     // exact ray/triangle tests at the leaves (the pairs that passed both)
     std::uint64_t fold_tests = 0;      // the closest-hit fold's re-tests (rh_closest.glsl)
     std::uint64_t brute_force_tests = 0;   // rays x triangles
-    std::uint64_t node_tests() const;   // every cone+sphere test of the traversal but the leaves' pairs
+    std::uint64_t node_tests() const;   // every pair test of the traversal (sphere, box) but the leaves' pairs
 };
 
 struct HierarchyKindTimes {      // ms of the kind's phases (the GPU timer's rh_build.<kind>, ...)

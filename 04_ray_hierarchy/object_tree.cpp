@@ -235,6 +235,34 @@ bool rh_ray_box_test(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec
     return !(t_in > t_out * (1.0f + kRhPad) + 1e-30f);   // a NaN keeps the pair
 }
 
+bool rh_node_box_test(const RhNode& node, glm::vec3 lo, glm::vec3 hi) {
+    if (node.empty()) return false;
+    if (node.cone.w >= kRhAllDirections) return true;
+    const glm::vec3 c(node.sphere), a(node.cone);
+    const float r = node.sphere.w, ct = std::cos(node.cone.w), st = std::sin(node.cone.w);
+    const float pad = kRhPad * (max_abs(c) + r + std::max(max_abs(lo), max_abs(hi))) + 1e-30f;
+    float t_in = 0.0f, t_out = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        const float other_1 = a[(i + 1) % 3], other_2 = a[(i + 2) % 3];
+        const float sin_alpha = std::sqrt(other_1 * other_1 + other_2 * other_2);   // cos alpha = a[i]
+        // The range of d_i over the cone: cos(max(alpha - theta, 0)) and cos(min(alpha + theta, pi)), padded; a
+        // bound of 0 moves off 0 outwards, so that neither division below is by 0.
+        float d_hi = (a[i] <= ct ? a[i] * ct + sin_alpha * st : 1.0f) + kRhPad;
+        float d_lo = (a[i] >= -ct ? a[i] * ct - sin_alpha * st : -1.0f) - kRhPad;
+        if (d_hi == 0.0f) d_hi = 1e-30f;
+        if (d_lo == 0.0f) d_lo = -1e-30f;
+        // t d_lo <= hi + pad - (c - r): the rays' lowest point has not passed the slab's top; a positive d_lo ends
+        // the half-line of t, a negative one starts it. t d_hi >= lo - pad - (c + r): their highest point has
+        // reached its bottom.
+        const float t_lo = (hi[i] + pad - (c[i] - r)) / d_lo, t_hi = (lo[i] - pad - (c[i] + r)) / d_hi;
+        if (d_lo < 0.0f) t_in = std::max(t_in, t_lo);
+        if (d_lo > 0.0f) t_out = std::min(t_out, t_lo);
+        if (d_hi > 0.0f) t_in = std::max(t_in, t_hi);
+        if (d_hi < 0.0f) t_out = std::min(t_out, t_hi);
+    }
+    return !(t_in > t_out * (1.0f + kRhPad) + 1e-30f);   // a NaN keeps the pair
+}
+
 bool rh_split_rays(const RhNode& node, glm::vec4 s) {
     if (node.cone.w >= kRhAllDirections) return true;
     const float distance = glm::length(glm::vec3(s) - glm::vec3(node.sphere));
@@ -288,7 +316,20 @@ PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vec
                 continue;
         } else {
             ++out.node_tests;
-            if (!rh_may_hit(levels[p.level][p.index], sphere)) continue;
+            const RhNode& rays_node = levels[p.level][p.index];
+            if (!rh_may_hit(rays_node, sphere)) continue;
+            if (!triangles.empty()) {   // the box too (--box-test on): the triangle's, or the object node's
+                glm::vec3 lo, hi;
+                if (triangle) {
+                    const glm::vec3* v = &triangles[3 * std::size_t(p.object & ~kTriangleFlag)];
+                    lo = glm::min(v[0], glm::min(v[1], v[2]));
+                    hi = glm::max(v[0], glm::max(v[1], v[2]));
+                } else {
+                    lo = glm::vec3(tree.nodes[p.object].box_lo);
+                    hi = glm::vec3(tree.nodes[p.object].box_hi);
+                }
+                if (!rh_node_box_test(rays_node, lo, hi)) continue;
+            }
         }
         const bool split_rays =
             triangle || (p.level > 0 && mode == ObjectMode::tree && rh_split_rays(levels[p.level][p.index], sphere));

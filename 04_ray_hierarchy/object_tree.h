@@ -45,8 +45,8 @@ constexpr unsigned kMortonAxisBits = 10;         // per axis: 2^30 cells
 // One object node, as on the GPU (std430 RhObject, 64 bytes). Level 1 nodes bound triangles: order[first + k] for
 // k < count (meshes: the identity order). Level l > 1 nodes bound nodes [first, first + count) of level l - 1.
 // The sphere bounds the children's spheres (for the cone+sphere test of ray nodes); the box (xyz of box_lo, box_hi;
-// unpadded, as rh_ray_box_test pads) bounds the triangles' vertices, for the box test of single rays, which is
-// tighter on long or thin clusters. Mesh objects keep the box of all space (the box test keeps every ray).
+// unpadded, as rh_ray_box_test pads) bounds the triangles' vertices, for the box test of single rays and ray nodes,
+// which is tighter on long or thin clusters. Mesh objects keep the box of all space (the box test keeps every ray).
 struct ObjectNode {
     glm::vec4 sphere{0.0f};
     std::uint32_t first = 0, count = 0, level = 1, pad = 0;
@@ -114,6 +114,17 @@ bool rh_ray_box_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::
 // ray its triangles' tests keep: the box holds theirs, and every step of the test is monotone in the box.
 bool rh_ray_box_test(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec3 lo, glm::vec3 hi);
 
+// The same for every ray of a ray node at once (rh_common.glsl: rh_node_box_test): can some ray o + t d, t >= 0, of
+// the node (origin in its sphere, direction in its cone) pass through the box [lo, hi]? The slab test in interval
+// arithmetic: on each axis the origins' coordinate lies in [c - r, c + r] and the unit directions' in the range of
+// cos(angle to the axis) over the cone, so the rays' points at t lie in an interval that meets the slab for t in a
+// half-line or two; the box is out of reach when the axes' t ranges do not overlap. After the cone+sphere test in
+// --box-test on: the box of a large or thin triangle is far tighter than its sphere. Padded as rh_ray_box_test, the
+// direction bounds by kRhPad (they hold the GPU's sin and cos too); false for an empty node, true for one of every
+// direction. The GLSL twin computes the same bounds with the GPU's sin and cos, so the two may differ on a pair
+// within the padding; both keep every pair whose rays can hit.
+bool rh_node_box_test(const RhNode& node, glm::vec3 lo, glm::vec3 hi);
+
 // Which side of a surviving (ray node, object node) pair to split in `tree` mode: the rays when their beam is wider
 // than the object node where it meets it (sphere radius + distance x sin(spread), every direction: always), else the
 // object node. Either choice is exact; this one keeps both sides of a pair about the same size, as a dual-tree
@@ -128,12 +139,13 @@ struct RhTraceRay {
 };
 struct PairTraversal {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> exact;   // (ray, triangle) pairs given the exact test
-    std::uint64_t node_tests = 0;     // cone+sphere tests of (ray node or ray, object node or triangle) pairs
+    std::uint64_t node_tests = 0;     // tests of (ray node or ray, object node or triangle) pairs (sphere, box)
     std::uint64_t sphere_tests = 0;   // rh_ray_may_hit tests of (ray, triangle) pairs
     std::uint64_t box_tests = 0;      // rh_ray_box_may_hit tests of the pairs that passed the sphere's
 };
-// `triangles` (3 vertices each): given, the box tests too (--box-test on): a single ray against an object node's box
-// after its sphere, a (ray, triangle) pair that passes the sphere test against the triangle's box.
+// `triangles` (3 vertices each): given, the box tests too (--box-test on): a ray node against a triangle's or object
+// node's box after its sphere, a single ray against an object node's, a (ray, triangle) pair that passes the sphere
+// test against the triangle's box.
 PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vector<std::vector<RhNode>>& levels,
                              int branching, const std::vector<glm::vec4>& triangle_spheres, const ObjectTree& tree,
                              ObjectMode mode, const std::vector<glm::vec3>& triangles = {});

@@ -332,6 +332,73 @@ TEST(ObjectTree, RayBoxTestKeepsEveryGrazingHit) {
     EXPECT_EQ(culled, 0u);
 }
 
+// The box test of a ray node (rh_node_box_test) by hand: a beam of four rays along +z, a flat triangle's box ahead,
+// beside and behind them; a node of every direction and an empty node.
+TEST(ObjectTree, NodeBoxTestRejectsOnlyWhatNoRayOfTheNodeReaches) {
+    const glm::vec3 z(0.0f, 0.0f, 1.0f);
+    std::vector<RhNode> leaves;
+    for (int i = 0; i < 4; ++i)
+        leaves.push_back(rh_leaf(glm::vec3(float(i % 2), float(i / 2), 0.0f), z + 0.05f * glm::vec3(float(i), 0, 0)));
+    const RhNode beam = rh_union(leaves.data(), leaves.size());
+    const glm::vec3 lo(0.0f, 0.0f, 10.0f), hi(4.0f, 4.0f, 10.0f);   // no depth in z
+    EXPECT_TRUE(rh_node_box_test(beam, lo, hi));
+    EXPECT_FALSE(rh_node_box_test(beam, lo + glm::vec3(6.0f, 0.0f, 0.0f), hi + glm::vec3(6.0f, 0.0f, 0.0f)));
+    EXPECT_TRUE(rh_node_box_test(beam, lo + glm::vec3(1.4f, 0.0f, 0.0f), hi + glm::vec3(1.4f, 0.0f, 0.0f)));
+    EXPECT_FALSE(rh_node_box_test(beam, -hi, -lo));   // behind the origins
+    EXPECT_TRUE(rh_node_box_test(beam, glm::vec3(0.2f, 0.2f, -0.1f), glm::vec3(0.3f, 0.3f, 0.1f)));   // at them
+    // The sphere of a long needle beside the beam holds it; the needle's box does not.
+    const glm::vec3 n0(-50.0f, 10.0f, 20.0f), n1(50.0f, 10.01f, 20.0f), n2(50.0f, 10.0f, 20.01f);
+    EXPECT_TRUE(rh_may_hit(beam, rh_triangle_sphere(n0, n1, n2)));
+    EXPECT_FALSE(rh_node_box_test(beam, glm::min(n0, glm::min(n1, n2)), glm::max(n0, glm::max(n1, n2))));
+    const glm::vec3 opposite[2] = {z, -z};
+    RhNode all[2] = {rh_leaf(glm::vec3(0.0f), opposite[0]), rh_leaf(glm::vec3(0.0f), opposite[1])};
+    EXPECT_TRUE(rh_node_box_test(rh_union(all, 2), -hi, -lo));   // every direction reaches everything
+    EXPECT_FALSE(rh_node_box_test(RhNode{}, lo, hi));            // an empty node reaches nothing
+    EXPECT_TRUE(rh_node_box_test(beam, glm::vec3(-INFINITY), glm::vec3(INFINITY)));   // all space (mesh objects)
+    EXPECT_TRUE(rh_node_box_test(beam, glm::vec3(NAN), hi));                          // NaN keeps the pair
+}
+
+// The node's box test keeps a node whenever one of its rays passes its own box test (unbounded), on every node of
+// the adversarial ray sets and two beams against every triangle's box: so it culls no pair the leaves would keep, and
+// no hit. A leaf node (one ray, no spread) too.
+TEST(ObjectTree, NodeBoxTestKeepsEveryNodeOneOfWhoseRaysPassesItsBoxTest) {
+    std::uint64_t culled = 0, culled_past_the_sphere = 0;
+    for (const ray_sets::Case& c : ray_sets::with_beams())
+        for (int b : {4, 16}) {
+            const auto levels = rh_build(c.rays, b);
+            const std::vector<glm::vec3> triangles = ray_sets::with_walls(c.triangles);
+            for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
+                const glm::vec3* v = &triangles[3 * t];
+                const glm::vec3 lo = glm::min(v[0], glm::min(v[1], v[2])), hi = glm::max(v[0], glm::max(v[1], v[2]));
+                // Each ray's box test on its direction as its leaf holds it (unit length: the ray test's absolute
+                // slack of 1e-30 in t would keep rays of directions near 1e30 that pass beside the box).
+                std::vector<char> ray_kept(c.rays.size());
+                for (std::size_t i = 0; i < c.rays.size(); ++i) {
+                    const RhNode& leaf = levels[0][i];
+                    ray_kept[i] =
+                        !leaf.empty() && rh_ray_box_test(c.rays[i].origin, glm::vec3(leaf.cone), INFINITY, lo, hi);
+                    if (ray_kept[i]) ASSERT_TRUE(rh_node_box_test(leaf, lo, hi)) << c.name << " ray " << i;
+                }
+                std::size_t span = 1;
+                for (std::size_t l = 1; l < levels.size(); ++l) {
+                    span *= std::size_t(b);
+                    for (std::size_t j = 0; j < levels[l].size(); ++j) {
+                        if (rh_node_box_test(levels[l][j], lo, hi)) continue;
+                        ++culled;
+                        culled_past_the_sphere += rh_may_hit(levels[l][j], rh_triangle_sphere(v[0], v[1], v[2]));
+                        for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i) {
+                            ASSERT_FALSE(ray_kept[i])
+                                << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
+                            ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], v)) << c.name << " node " << j << " hits";
+                        }
+                    }
+                }
+            }
+        }
+    EXPECT_GT(culled, 1000u);
+    EXPECT_GT(culled_past_the_sphere, 200u);   // it culls where the cone+sphere test keeps the pair
+}
+
 TEST(ObjectTree, TheTreeMeetsFewerPairsThanEveryTriangle) {
     // 4096 small triangles on a grid, a coherent beam: the tree's node and sphere tests are a small fraction of
     // the triangles mode's (where every top node meets every triangle).

@@ -83,6 +83,38 @@ inline std::vector<Case> all() {
     return cases;
 }
 
+// all(), and two beams (origins in a patch of 1% of a triangle's size, directions within about 10 degrees; one near
+// the origin, one at huge coordinates), whose nodes are small beside the triangles: where a box culls pairs the
+// cone+sphere test keeps.
+inline std::vector<Case> with_beams() {
+    std::vector<Case> cases = all();
+    std::mt19937 g(5);
+    for (Case beam : {cases[0], cases[9]}) {
+        beam.name += "_beam";
+        const glm::vec3 centre = beam.rays[0].origin, axis = unit(g);
+        const float size = glm::length(beam.triangles[0] - beam.triangles[1]);
+        for (RhRay& r : beam.rays) {
+            r.origin = centre + 0.01f * size * unit(g);
+            r.direction = glm::normalize(axis + 0.15f * unit(g));
+        }
+        cases.push_back(beam);
+    }
+    return cases;
+}
+
+// The triangles, then each again flattened onto an axis plane through its first vertex (x, y, z in turn): walls,
+// whose boxes have no depth, and are far tighter than their spheres.
+inline std::vector<glm::vec3> with_walls(const std::vector<glm::vec3>& triangles) {
+    std::vector<glm::vec3> out = triangles;
+    for (std::size_t k = 0; k < triangles.size(); ++k) {
+        const int axis = int(k / 3 % 3);
+        glm::vec3 p = triangles[k];
+        p[axis] = triangles[k / 3 * 3][axis];
+        out.push_back(p);
+    }
+    return out;
+}
+
 // One ray aimed at one triangle's vertex, edge or inside: the cases where a cheap test grazes the exact test's hit.
 struct AimedRay {
     RhRay ray;

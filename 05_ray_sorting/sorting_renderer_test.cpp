@@ -233,8 +233,9 @@ TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
 }
 
 // Sorting never loses, once checked: from the third frame on (measured, checked), every scene's frame tests at most
-// the pairs stage 04's does. On spheres:4 and cornell at this size the measure keeps a shadow sort that tests more
-// (2.5% and 0.03% more pairs in frame 1): the check drops it, and frame 3 is stage 04's.
+// the pairs stage 04's does. On spheres:4 at this size the measure keeps a shadow sort that tests more pairs in
+// frame 1 (so did cornell's, by 0.03%, until the ray nodes' box test of 2026-12-06): the check drops it, and frame 3
+// is stage 04's.
 TEST(RaySortingRenderer, AfterTheCheckSortingNeverTestsMorePairsThanTheQueueOrder) {
     gpu::test_context();
     for (const char* name : {"spheres:4", "cornell", "whitted", "absorption", "mirror_box", "spheres:45"}) {
@@ -243,7 +244,7 @@ TEST(RaySortingRenderer, AfterTheCheckSortingNeverTestsMorePairsThanTheQueueOrde
         for (const FrameResult& f : frames) expect_same_frame(reference, f, name);
         EXPECT_EQ(pairs_tested(frames[1]), pairs_tested(reference)) << name << ": the check is stage 04's frame";
         EXPECT_LE(pairs_tested(frames[2]), pairs_tested(reference)) << name;
-        if (std::string(name) == "spheres:4" || std::string(name) == "cornell") {
+        if (std::string(name) == "spheres:4") {
             EXPECT_GT(pairs_tested(frames[0]), pairs_tested(reference)) << name << ": the measure keeps a losing sort";
             EXPECT_EQ(sort_count(frames[1], "shadow", "sorts_dropped"), 1u) << name;
             EXPECT_EQ(pairs_tested(frames[2]), pairs_tested(reference)) << name << ": and the check drops it";

@@ -1,7 +1,8 @@
 #version 450 core
 // The conservative test of one chunk of candidate pairs (ray side, object side) (rh_pairs.glsl), each on its own
-// levels: a ray node against an object node or a triangle (rh_may_hit), a single ray against an object node
-// (rh_ray_may_hit, then with --box-test its box: rh_ray_box_test). A survivor splits one side (object_tree.h): the ray
+// levels: a ray node against an object node or a triangle (rh_may_hit, then with --box-test its box:
+// rh_node_box_test), a single ray against an object node (rh_ray_may_hit, then with --box-test its box:
+// rh_ray_box_test). A survivor splits one side (object_tree.h): the ray
 // node into its children, or the object node into its children (nodes, or a leaf's triangles); a triangle is never
 // split, a single ray neither. (ray, triangle) pairs are not tested here: rh_leaf.comp gives them the sphere test and
 // the exact test. Every split takes one side one level down, so the pairs of one step are equally deep and the (ray,
@@ -24,13 +25,13 @@
 // rh_counts[i] packs the count (bits 0-12, at most 4096), that place (bits 13-30, at most 63 x 4096) and the side
 // split (bit 31: the object side).
 #include "rh_common.glsl"
+#include "rh_triangles.glsl"
 #include "rh_pairs.glsl"
 #include "rh_info.glsl"
 
 layout(local_size_x = 64) in;
 
 layout(std430, binding = RH_BINDING_NODES) readonly buffer Nodes { RhNode rh_nodes[]; };
-layout(std430, binding = RH_BINDING_SPHERES) readonly buffer Spheres { vec4 rh_spheres[]; };
 layout(std430, binding = RH_BINDING_OBJECTS) readonly buffer Objects { RhObject rh_objects[]; };
 #ifdef RH_CULL_WRITES_CHILDREN
 // The step's children all fit one window (gpu_ray_traversal.cpp, test_chunk: `chain`): each survivor writes its
@@ -82,18 +83,31 @@ void main() {
         const uint level = rh_ray_level(p.x), index = rh_ray_index(p.x);
         const bool triangle = rh_is_triangle(p.y);
         if (!(level == 0u && triangle)) {   // (ray, triangle) pairs are rh_leaf.comp's (only the last step has them)
-            const vec4 s = triangle ? rh_spheres[p.y & ~RH_TRIANGLE_FLAG] : rh_objects[p.y].sphere;
+            // The object side's bounds: an object node's sphere and box, or a triangle's, from its vertices (as in
+            // rh_leaf.comp; a buffer of the triangles' spheres would be a 17th storage block with --heatmap).
+            vec4 s;
+            vec3 lo, hi;
+            if (triangle) {
+                vec3 a, b, c;
+                rh_load_triangle(p.y & ~RH_TRIANGLE_FLAG, a, b, c);
+                s = rh_triangle_sphere(a, b, c);
+                lo = min(a, min(b, c));
+                hi = max(a, max(b, c));
+            } else {
+                const RhObject o = rh_objects[p.y];
+                s = o.sphere;
+                lo = o.box_lo.xyz;
+                hi = o.box_hi.xyz;
+            }
             bool may_hit, split_rays = false;
-            if (level == 0u) {
+            if (level == 0u) {   // a single ray, against an object node
                 const WavefrontRay r = wf_rays_in[rh_group_first + index];
                 may_hit = rh_ray_may_hit(r.origin, r.direction, r.tmax, s);
-                if (may_hit && rh_box_test == 1u) {   // an object node: its box too (--box-test)
-                    const RhObject o = rh_objects[p.y];
-                    may_hit = rh_ray_box_test(r.origin, r.direction, r.tmax, o.box_lo.xyz, o.box_hi.xyz);
-                }
+                if (may_hit && rh_box_test == 1u) may_hit = rh_ray_box_test(r.origin, r.direction, r.tmax, lo, hi);
             } else {
                 const RhNode node = rh_nodes[rh_level_first[level] + index];
                 may_hit = rh_may_hit(node, s);
+                if (may_hit && rh_box_test == 1u) may_hit = rh_node_box_test(node, lo, hi);   // --box-test
                 split_rays = triangle || (rh_split_larger == 1u && rh_split_rays(node, s));
             }
             uint counts = RH_COUNT_IN + (triangle ? 0u : RH_COUNT_OBJECT_IN);
