@@ -85,10 +85,11 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
     const std::uint32_t b = std::uint32_t(options.branching);
     const std::uint32_t slot = kInfoStepCount + std::uint32_t(step);
     std::uint32_t total = 0;
-    // The most children one pair of this chunk can have: B rays, 4 tree nodes or a cluster's 4 triangles, or a mesh
-    // object's triangles (only at the top: below it every object side is a triangle).
+    // The most children one pair of this chunk can have: B rays, kObjectBranching tree nodes or a cluster's
+    // kClusterSize triangles (the same number), or a mesh object's triangles (only at the top: below it every object
+    // side is a triangle).
     const std::uint64_t most =
-        options.objects == ObjectMode::meshes && step == 0 ? 4096 : std::max<std::uint32_t>(b, 4);
+        options.objects == ObjectMode::meshes && step == 0 ? 4096 : std::max<std::uint32_t>(b, kObjectBranching);
     // Every split takes one side one level down, so all pairs of a step are equally deep: the last step holds only
     // (ray, triangle) pairs, and only it does. They go to the leaves; the other steps are tested and expanded.
     if (step >= max_depth_) {
