@@ -267,7 +267,7 @@ bool rh_split_rays(const RhNode& node, glm::vec4 s) {
     if (node.cone.w >= kRhAllDirections) return true;
     const float distance = glm::length(glm::vec3(s) - glm::vec3(node.sphere));
     const float width = node.sphere.w + distance * std::sin(std::min(node.cone.w, 1.57079637f));
-    return width > s.w;
+    return width > kSplitRaysWidth * s.w;
 }
 
 PairTraversal traverse_pairs(const std::vector<RhTraceRay>& rays, const std::vector<std::vector<RhNode>>& levels,

@@ -399,6 +399,24 @@ TEST(ObjectTree, NodeBoxTestKeepsEveryNodeOneOfWhoseRaysPassesItsBoxTest) {
     EXPECT_GT(culled_past_the_sphere, 200u);   // it culls where the cone+sphere test keeps the pair
 }
 
+// The split rule (rh_split_rays): the rays of a pair are split when their beam (radius + distance x sin(spread)) is
+// wider than kSplitRaysWidth of the object node's radius, else the object node; a node of every direction always
+// splits its rays.
+TEST(ObjectTree, SplitRaysWhenTheBeamIsWiderThanAQuarterOfTheObject) {
+    const glm::vec3 z(0.0f, 0.0f, 1.0f);
+    RhNode beam = rh_leaf(glm::vec3(0.0f), z);
+    beam.sphere.w = 1.0f;   // no spread: the beam is 1 wide at any distance
+    const glm::vec3 ahead(0.0f, 0.0f, 10.0f);
+    EXPECT_TRUE(rh_split_rays(beam, glm::vec4(ahead, 0.5f)));    // wider than the object
+    EXPECT_TRUE(rh_split_rays(beam, glm::vec4(ahead, 3.0f)));    // narrower, but wider than a quarter of it
+    EXPECT_FALSE(rh_split_rays(beam, glm::vec4(ahead, 5.0f)));   // narrower than a quarter: the object splits
+    beam.cone.w = 0.1f;   // spread: 1 + 10 sin(0.1) = 2.0 wide at the object
+    EXPECT_TRUE(rh_split_rays(beam, glm::vec4(ahead, 7.0f)));
+    EXPECT_FALSE(rh_split_rays(beam, glm::vec4(ahead, 9.0f)));
+    beam.cone.w = kRhAllDirections;
+    EXPECT_TRUE(rh_split_rays(beam, glm::vec4(ahead, 1e30f)));
+}
+
 TEST(ObjectTree, TheTreeMeetsFewerPairsThanEveryTriangle) {
     // 4096 small triangles on a grid, a coherent beam: the tree's node and sphere tests are a small fraction of
     // the triangles mode's (where every top node meets every triangle).

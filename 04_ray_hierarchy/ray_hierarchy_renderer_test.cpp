@@ -66,7 +66,7 @@ std::vector<HitRecord> sorted_by_ray(std::vector<HitRecord> hits) {
     return hits;
 }
 
-// Pair buffers of 256 entries and a hit list of 2 entries per ray: the speculative tries run out of room and their
+// Pair buffers of 128 entries and a hit list of 2 entries per ray: the speculative tries run out of room and their
 // groups are traced again (gpu_ray_hierarchy.h), in many chunks and windows, and the hit list fills up and is pruned;
 // the frame is the same, pair for pair, and so are the tests counted. So it is without speculation.
 TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
@@ -75,14 +75,14 @@ TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
     const RenderSettings settings = test_frame_settings(s);
     const FrameResult reference = render_rh(s, settings, {});
     HierarchyOptions tiny_options;
-    tiny_options.pair_capacity = 256;
+    tiny_options.pair_capacity = 128;
     tiny_options.hit_list_per_ray = 2;
     const FrameResult tiny = render_rh(s, settings, tiny_options);
-    expect_same_frame(tiny, reference, "256 pairs per buffer");
+    expect_same_frame(tiny, reference, "128 pairs per buffer");
     EXPECT_EQ(tiny.stats.counters.intersection_tests, reference.stats.counters.intersection_tests);
     const auto& t = tiny.extra["ray_hierarchy"];
     const auto& r = reference.extra["ray_hierarchy"];
-    EXPECT_EQ(t["pair_capacity"], 256);
+    EXPECT_EQ(t["pair_capacity"], 128);
     EXPECT_GT(std::uint64_t(t["windows"]), 10 * std::uint64_t(r["windows"]));
     EXPECT_GT(std::uint64_t(t["hit_list_prunes"]), 0u);
     EXPECT_GT(std::uint64_t(t["groups_retraced"]), 0u);
@@ -91,7 +91,7 @@ TEST(RayHierarchyRenderer, TinyPairBuffersGiveTheSameImageHitsAndCounts) {
             EXPECT_EQ(t["kinds"][kind][key], r["kinds"][kind][key]) << kind << " " << key;
     tiny_options.speculate = false;
     const FrameResult windowed = render_rh(s, settings, tiny_options);
-    expect_same_frame(windowed, reference, "256 pairs per buffer, no speculation");
+    expect_same_frame(windowed, reference, "128 pairs per buffer, no speculation");
     EXPECT_EQ(windowed.stats.counters.intersection_tests, reference.stats.counters.intersection_tests);
     EXPECT_EQ(windowed.extra["ray_hierarchy"]["groups_retraced"], 0);
     for (const char* kind : {"shadow", "reflection", "refraction"})

@@ -245,11 +245,13 @@ bool rh_ray_box_may_hit(vec3 origin, vec3 direction, float tmax, vec3 a, vec3 b,
     return rh_ray_box_test(origin, direction, tmax, min(a, min(b, c)), max(a, max(b, c)));
 }
 
-// --objects tree: split the rays of a surviving pair when their beam is wider than the object node where it meets
-// it, else the object node (object_tree.h: rh_split_rays). Either choice is exact.
+// --objects tree: split the rays of a surviving pair when their beam is wider than a quarter of the object node's
+// radius where it meets it, else the object node (object_tree.h: rh_split_rays and kSplitRaysWidth, why a quarter).
+// Either choice is exact.
+#define RH_SPLIT_RAYS_WIDTH 0.25   // object_tree.h: kSplitRaysWidth
 bool rh_split_rays(RhNode node, vec4 s) {
     if (node.cone.w >= RH_ALL_DIRECTIONS) return true;
     const float distance = length(s.xyz - node.sphere.xyz);
     const float width = node.sphere.w + distance * sin(min(node.cone.w, 1.57079637));
-    return width > s.w;
+    return width > RH_SPLIT_RAYS_WIDTH * s.w;
 }

@@ -2,8 +2,8 @@
 // twin builds it, and which of its nodes one node of the ray hierarchy meets, written as an SVG. The triangles lie in
 // four clumps; the leaves (clusters of 4 triangles, in Morton order) are the thin circles, level 2 (4 clusters) the
 // thick ones, the root dashed. A node of 16 rays from the bottom left (its sphere and cone in blue) is tested against
-// the root, and each surviving pair splits the larger side: the tree nodes it reaches are drawn solid, the ones it
-// culls for all its rays at once red.
+// the root, and each surviving pair splits one side (rh_split_rays): the tree nodes it reaches are drawn solid, the
+// ones it culls for all its rays at once red.
 //     build/bin/ot_figure 04_ray_hierarchy/object_tree.svg
 #include <cmath>
 #include <cstdio>
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         << "' fill='none' stroke='#26c' stroke-width='1.4'/>\n"
         << "<text x='10' y='20'>64 triangles; the object tree: leaves of 4 triangles (thin), level 2 (thick), root "
            "(dashed).</text>\n"
-        << "<text x='10' y='36'>A node of 16 rays (blue) against the tree, splitting the larger side: nodes reached "
+        << "<text x='10' y='36'>A node of 16 rays (blue) against the tree, split by rh_split_rays: nodes reached "
            "green,</text>\n"
         << "<text x='10' y='52'>culled for all its rays at once red, never tested grey.</text>\n</svg>\n";
     std::printf("wrote %s: %zu tree nodes, %zu reached, %zu culled\n", argv[1], tree.nodes.size(), reached.size(),

@@ -45,10 +45,10 @@ uint oc_fixed_width(RhNode node, float longest, float diagonal) {
 
 // The cap of a node's width: the mean diameter of the finest objects the ray nodes are culled against (the object
 // tree's clusters, mesh objects or triangles), from the sum of their radii in width units. A ray node wider than the
-// leaf it meets is split into its rays there (rh_split_rays), so how much wider it is changes nothing below; without
-// the cap a few very wide nodes (rays from both sides of a silhouette) outweigh the rest, and the sort they favour can
-// cost more (05's README, "Choosing per batch": builtin:spheres:450's shadow rays, +3.7% leaf pairs and node tests with
-// the uncapped width). No leaves: no cap.
+// leaf it meets is split into its rays there (rh_split_rays splits one a quarter as wide), so how much wider it is
+// changes nothing below; without the cap a few very wide nodes (rays from both sides of a silhouette) outweigh the
+// rest, and the sort they favour can cost more (05's README, "Choosing per batch": builtin:spheres:450's shadow rays,
+// +3.7% leaf pairs and node tests with the uncapped width). No leaves: no cap.
 uint oc_radius_units(float radius, float diagonal) {
     precise float units = radius / diagonal * OC_UNITS;
     if (!(units >= 0.0)) return 0u;   // an empty sphere (radius < 0) or NaN
