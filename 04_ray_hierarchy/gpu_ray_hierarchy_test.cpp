@@ -299,12 +299,13 @@ TEST(GpuRayHierarchy, PerLevelStatsAddUp) {
             EXPECT_EQ(o.box_tests, 0u);
             EXPECT_LT(k.leaf_pairs, o.leaf_pairs) << "B=" << b << ": the nodes' box test culls no pair";
             EXPECT_LE(k.local_tests, o.local_tests) << "B=" << b;
-            if (sphere)
+            if (sphere) {
                 EXPECT_LE(o.local_tests, o.leaf_pairs) << "B=" << b;
-            else
+                leaf_pairs_without_box = o.leaf_pairs;
+            } else {
                 EXPECT_EQ(o.local_tests, o.leaf_pairs) << "B=" << b;
-            if (sphere) leaf_pairs_without_box = o.leaf_pairs;
-            else EXPECT_EQ(o.leaf_pairs, leaf_pairs_without_box) << "B=" << b;
+                EXPECT_EQ(o.leaf_pairs, leaf_pairs_without_box) << "B=" << b;
+            }
         }
         EXPECT_EQ(k.brute_force_tests, rays.size() * scene.triangle_count());
         EXPECT_LT(k.local_tests * 10, k.brute_force_tests) << "B=" << b;   // a coherent beam culls well
