@@ -124,9 +124,8 @@ void test_main() { out_b(0u, rh_may_hit(RhNode(in_vec4(0u), in_vec4(4u)), in_vec
                 ++rejected;
                 const auto [l, j] = pairs[p];
                 const std::size_t t = p / per_triangle;
-                std::size_t span = 1;
-                for (std::size_t k = 0; k < l; ++k) span *= std::size_t(b);
-                for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i)
+                const auto [first, last] = ray_sets::leaves_under(j, l, b, c.rays.size());
+                for (std::size_t i = first; i < last; ++i)
                     ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], &c.triangles[3 * t]))
                         << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
             }
@@ -168,9 +167,8 @@ void test_main() { out_b(0u, rh_node_box_test(RhNode(in_vec4(0u), in_vec4(4u)), 
                 const auto [l, j, t] = records[k];
                 const glm::vec3* v = &triangles[3 * t];
                 const glm::vec3 lo = glm::min(v[0], glm::min(v[1], v[2])), hi = glm::max(v[0], glm::max(v[1], v[2]));
-                std::size_t span = 1;
-                for (std::size_t e = 0; e < l; ++e) span *= std::size_t(b);
-                for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i) {
+                const auto [first, last] = ray_sets::leaves_under(j, l, b, c.rays.size());
+                for (std::size_t i = first; i < last; ++i) {
                     const RhNode& leaf = levels[0][i];
                     ASSERT_FALSE(!leaf.empty() &&
                                  rh_ray_box_test(c.rays[i].origin, glm::vec3(leaf.cone), INFINITY, lo, hi))

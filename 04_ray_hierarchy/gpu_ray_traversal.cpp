@@ -135,7 +135,7 @@ void GpuRayHierarchy::test_chunk(int step, const Source& src, std::uint32_t coun
         set_source(cull, src);
         cull.set("rh_group_first", unsigned(in_->first + group_.first));
         cull.set("rh_branching", b);
-        cull.set("rh_split_larger", options.objects == ObjectMode::tree ? 1u : 0u);
+        cull.set("rh_split_by_width", options.objects == ObjectMode::tree ? 1u : 0u);
         cull.set("rh_box_test", options.box_test ? 1u : 0u);
         cull.set("rh_children_slot", slot + 1);
         dispatch_chunk(cull, step, count, on_gpu);

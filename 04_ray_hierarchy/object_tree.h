@@ -13,7 +13,7 @@
 //      (TransmissionTest: 268 single-ray node tests a reflection ray, 94 with these groups; docs/benchmarks.md).
 //
 // The traversal then works on pairs (ray node, object node): a pair whose cone-swept sphere misses the object's
-// sphere is dropped for every ray and triangle below both; a surviving pair splits one side (the larger: see
+// sphere or box is dropped for every ray and triangle below both; a surviving pair splits one side (see
 // rh_split_rays), until (ray, triangle) pairs remain. Those get two cheap per-ray tests (rh_ray_may_hit: the ray
 // against the triangle's bounding sphere; rh_ray_box_may_hit: against its box) and only then the exact ray/triangle
 // test.

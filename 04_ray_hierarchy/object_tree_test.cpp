@@ -377,16 +377,17 @@ TEST(ObjectTree, NodeBoxTestKeepsEveryNodeOneOfWhoseRaysPassesItsBoxTest) {
                     const RhNode& leaf = levels[0][i];
                     ray_kept[i] =
                         !leaf.empty() && rh_ray_box_test(c.rays[i].origin, glm::vec3(leaf.cone), INFINITY, lo, hi);
-                    if (ray_kept[i]) ASSERT_TRUE(rh_node_box_test(leaf, lo, hi)) << c.name << " ray " << i;
+                    if (ray_kept[i]) {
+                        ASSERT_TRUE(rh_node_box_test(leaf, lo, hi)) << c.name << " ray " << i;
+                    }
                 }
-                std::size_t span = 1;
                 for (std::size_t l = 1; l < levels.size(); ++l) {
-                    span *= std::size_t(b);
                     for (std::size_t j = 0; j < levels[l].size(); ++j) {
                         if (rh_node_box_test(levels[l][j], lo, hi)) continue;
                         ++culled;
                         culled_past_the_sphere += rh_may_hit(levels[l][j], rh_triangle_sphere(v[0], v[1], v[2]));
-                        for (std::size_t i = j * span; i < std::min(c.rays.size(), (j + 1) * span); ++i) {
+                        const auto [first, last] = ray_sets::leaves_under(j, l, b, c.rays.size());
+                        for (std::size_t i = first; i < last; ++i) {
                             ASSERT_FALSE(ray_kept[i])
                                 << c.name << " B=" << b << " level " << l << " node " << j << " triangle " << t;
                             ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], v)) << c.name << " node " << j << " hits";

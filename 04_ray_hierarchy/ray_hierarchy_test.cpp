@@ -18,13 +18,6 @@ namespace {
 
 bool valid(const RhRay& r) { return !rh_leaf(r.origin, r.direction).empty(); }
 
-// Rays [first, last) of the leaves under node j of level l.
-std::pair<std::size_t, std::size_t> leaves_under(std::size_t j, std::size_t level, int branching, std::size_t n) {
-    std::size_t span = 1;
-    for (std::size_t l = 0; l < level; ++l) span *= std::size_t(branching);
-    return {std::min(n, j * span), std::min(n, (j + 1) * span)};
-}
-
 TEST(RayHierarchy, EveryRayLiesInsideAllItsAncestors) {
     for (const ray_sets::Case& c : ray_sets::all())
         for (int b : {4, 8, 16}) {
@@ -54,7 +47,7 @@ TEST(RayHierarchy, TheNodeTestNeverRejectsATriangleARayBelowHits) {
                     for (std::size_t j = 0; j < levels[l].size(); ++j) {
                         if (rh_may_hit(levels[l][j], s)) continue;
                         ++rejected;
-                        const auto [first, last] = leaves_under(j, l, b, c.rays.size());
+                        const auto [first, last] = ray_sets::leaves_under(j, l, b, c.rays.size());
                         for (std::size_t i = first; i < last; ++i) {
                             ++checked;
                             ASSERT_FALSE(ray_sets::exact_hit(c.rays[i], v))

@@ -1,9 +1,11 @@
 // Random and adversarial ray sets, with triangles around them, for the hierarchy's property tests (CPU and GLSL).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -81,6 +83,14 @@ inline std::vector<Case> all() {
     coherent_huge.name = "coherent_huge_coordinates";
     cases.push_back(coherent_huge);
     return cases;
+}
+
+// Rays [first, last) of the n rays under node j of hierarchy level `level` (branching rays per node).
+inline std::pair<std::size_t, std::size_t> leaves_under(std::size_t j, std::size_t level, int branching,
+                                                        std::size_t n) {
+    std::size_t span = 1;
+    for (std::size_t l = 0; l < level; ++l) span *= std::size_t(branching);
+    return {std::min(n, j * span), std::min(n, (j + 1) * span)};
 }
 
 // all(), and two beams (origins in a patch of 1% of a triangle's size, directions within about 10 degrees; one near

@@ -1,12 +1,12 @@
 #version 450 core
 // The conservative test of one chunk of candidate pairs (ray side, object side) (rh_pairs.glsl), each on its own
-// levels: a ray node against an object node or a triangle (rh_may_hit, then with --box-test its box:
-// rh_node_box_test), a single ray against an object node (rh_ray_may_hit, then with --box-test its box:
-// rh_ray_box_test). A survivor splits one side (object_tree.h): the ray
-// node into its children, or the object node into its children (nodes, or a leaf's triangles); a triangle is never
-// split, a single ray neither. (ray, triangle) pairs are not tested here: rh_leaf.comp gives them the sphere test and
-// the exact test. Every split takes one side one level down, so the pairs of one step are equally deep and the (ray,
-// triangle) pairs are all in the last step, which only rh_leaf.comp sees.
+// levels: a ray node against an object node or a triangle (rh_may_hit, then with --box-test its box: rh_node_box_test),
+// a single ray against an object node (rh_ray_may_hit, then with --box-test its box: rh_ray_box_test). A survivor
+// splits one side (object_tree.h): the ray node into its children, or the object node into its children (nodes, or a
+// leaf's triangles); a triangle is never split, a single ray neither. (ray, triangle) pairs are not tested here:
+// rh_leaf.comp gives them the sphere and box tests and the exact test. Every split takes one side one level down, so
+// the pairs of one step are equally deep and the (ray, triangle) pairs are all in the last step, which only
+// rh_leaf.comp sees.
 //
 // Writes for each pair how many pairs it expands to (0 when rejected), for rh_expand.comp; or, compiled with
 // RH_CULL_WRITES_CHILDREN for a step whose children all fit one window, writes those children itself
@@ -52,7 +52,7 @@ uniform uint rh_level_first[32];   // ray level l >= 1: its node 0 in rh_nodes
 uniform uint rh_level_nodes[32];   // nodes on ray level l (level 0: the group's rays)
 uniform uint rh_group_first;       // wf_rays_in index of the group's ray 0
 uniform uint rh_branching;
-uniform uint rh_split_larger;      // 1 (--objects tree): split the larger side; 0: the object side first
+uniform uint rh_split_by_width;    // 1 (--objects tree): the side rh_split_rays picks; 0: the object side first
 uniform uint rh_box_test;          // 1 (--box-test on): a single ray against an object node's box too
 uniform uint rh_children_slot;     // RH_INFO_STEP_COUNT + step + 1: the children's count (0 before the pass)
 
@@ -108,7 +108,7 @@ void main() {
                 const RhNode node = rh_nodes[rh_level_first[level] + index];
                 may_hit = rh_may_hit(node, s);
                 if (may_hit && rh_box_test == 1u) may_hit = rh_node_box_test(node, lo, hi);   // --box-test
-                split_rays = triangle || (rh_split_larger == 1u && rh_split_rays(node, s));
+                split_rays = triangle || (rh_split_by_width == 1u && rh_split_rays(node, s));
             }
             uint counts = RH_COUNT_IN + (triangle ? 0u : RH_COUNT_OBJECT_IN);
             if (may_hit) counts += RH_COUNT_OUT + (triangle ? 0u : RH_COUNT_OBJECT_OUT);
