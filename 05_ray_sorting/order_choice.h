@@ -65,6 +65,14 @@ inline bool keep_sorted_order(std::uint64_t queue_cost, std::uint64_t sorted_cos
     return double(sorted_cost) * kOrderMarginDenominator < double(queue_cost) * (kOrderMarginDenominator - 1.0);
 }
 
+// The check's rule (sorting_renderer.h): a sort the measure kept stays only if the pairs it saved (queue's order
+// minus sorted, both measured on the batch) pay for its passes: more than batch_cost + ray_cost x its rays, in pair
+// tests (sort_options.h: kSortBatchCost, kSortRayCost). With both costs 0: any saving.
+inline bool sort_pays(std::uint64_t queue_pairs, std::uint64_t sorted_pairs, std::uint64_t rays,
+                      std::uint64_t batch_cost, std::uint64_t ray_cost) {
+    return sorted_pairs < queue_pairs && queue_pairs - sorted_pairs > batch_cost + ray_cost * rays;
+}
+
 // The order a batch is traced in: 0 = the queue's, 1 = the sorted one, 2 = the fine one (reflection and refraction
 // batches are also sorted by a finer direction cell, --fine-direction-bits): the tighter sort (the coarse one on a
 // tie) if keep_sorted_order says so against the queue.

@@ -55,6 +55,16 @@ void add_sort_options(CLI::App& app, SortOptions& options) {
                    "batch measured every frame)")
         ->capture_default_str()
         ->check(whole_number_in(1, 10000));
+    app.add_option("--sort-batch-cost", options.batch_cost,
+                   "With --sort auto, what sorting a batch costs in the hierarchy's pair tests, besides its rays': a "
+                   "sort the measure kept is kept after its check only if it saves more pairs than both (0 and 0: "
+                   "any saving)")
+        ->capture_default_str()
+        ->check(whole_number_in(0, 100000000));
+    app.add_option("--sort-ray-cost", options.ray_cost,
+                   "With --sort auto, what sorting costs per ray of the batch, in the hierarchy's pair tests")
+        ->capture_default_str()
+        ->check(whole_number_in(0, 100000));
     app.parse_complete_callback([&options, shadow_bits, fine_bits] {
         for (auto [name, bits, given] : {std::tuple{"--direction-bits", options.direction_bits, true},
                                          {"--shadow-direction-bits", options.shadow_direction_bits,

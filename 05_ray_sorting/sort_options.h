@@ -13,6 +13,12 @@ enum class SortMode {
 };
 const char* sort_mode_name(SortMode mode);   // "off", "on", "auto"
 
+// What a sort costs in pair tests on llvmpipe (measured 2026-12-06, 05's README "What a sort costs"): about 1 ms a
+// batch (its ~30 dispatches) and 0.3 us a ray, where a pair test costs 110-210 ns, so 5,000-9,000 pairs a batch and
+// 1.5-2.7 a ray. The defaults are the low ends, rounded down: a sort is dropped only where it surely does not pay.
+constexpr unsigned kSortBatchCost = 4096;
+constexpr unsigned kSortRayCost = 1;
+
 // The key of each batch kind (ray_keys.h): reflection and refraction rays [coarse direction | cubic origin], shadow
 // rays [cubic origin | direction].
 struct SortOptions {
@@ -25,9 +31,14 @@ struct SortOptions {
                                          // (0 or = direction_bits: none)
     unsigned probe_every = 8;            // --probe-every: with auto, every how many frames a batch is measured
                                          // again (between, it takes the order that won: sorting_renderer.h)
+    // --sort-batch-cost, --sort-ray-cost: with auto, what a sort costs, in the hierarchy's pair tests, per batch and
+    // per ray: a kept sort must save more pairs than that when checked (order_choice.h: sort_pays).
+    unsigned batch_cost = kSortBatchCost;
+    unsigned ray_cost = kSortRayCost;
 };
 
-// --sort, --key-bits, --direction-bits, --shadow-direction-bits, --fine-direction-bits and --probe-every, written
+// --sort, --key-bits, --direction-bits, --shadow-direction-bits, --fine-direction-bits, --probe-every,
+// --sort-batch-cost and --sort-ray-cost, written
 // into `options` when parsed; a direction width given above --key-bits is refused once the line is parsed.
 void add_sort_options(CLI::App& app, SortOptions& options);
 

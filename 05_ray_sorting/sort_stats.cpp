@@ -44,7 +44,11 @@ void to_json(nlohmann::json& out, const SortFrameStats& f) {
                                   {"sort_ms", f.sort_ms[k]}};
     }
     out["batches"] = batches;
-    if (o.mode == SortMode::automatic) out["probe_every"] = o.probe_every;
+    if (o.mode == SortMode::automatic) {
+        out["probe_every"] = o.probe_every;
+        out["batch_cost"] = o.batch_cost;
+        out["ray_cost"] = o.ray_cost;
+    }
     out["gpu_cpu_syncs"] = f.gpu_cpu_syncs;
 }
 

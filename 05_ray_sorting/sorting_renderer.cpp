@@ -130,6 +130,7 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
             choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, fine ? &fine_order_ : nullptr,
                            hierarchy_options.branching, diagonal_, int(kind), slot);
             stats.measured_batches += 1;
+            if (slot < kOrderRecords) memory_[kind][slot].rays = n;   // what its sort cost, for the check
         }
         sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
         gather_.set("rs_count", unsigned(n));
@@ -207,9 +208,10 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
                 if (t.choices[k][slot] != kOrderNoRecord) {   // measured: a kept sort is checked next frame
                     const int order = int(t.choices[k][slot]);
                     const bool check = order > 0 && recorded;
-                    m = {order, 0, check ? order : 0, check ? pairs : 0};
+                    m = {order, 0, check ? order : 0, check ? pairs : 0, m.rays};
                 } else if (m.to_check > 0 && recorded) {   // checked: the queue's order tested `pairs`
-                    const bool sort_won = m.sorted_pairs < pairs;
+                    const bool sort_won = sort_pays(pairs, m.sorted_pairs, m.rays, sort_options.batch_cost,
+                                                    sort_options.ray_cost);
                     if (!sort_won) f.batches[k].sorts_dropped += 1;
                     m.order = sort_won ? m.to_check : 0;
                     m.to_check = 0;

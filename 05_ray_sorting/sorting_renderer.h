@@ -62,7 +62,8 @@ private:
     // sort kept on spheres:4 tested 0.1% more pairs than the queue's order). So a sort the measure keeps is checked
     // against the real thing: the batch's pairs tested (node tests + leaf pairs, GpuRayHierarchy::tally_pairs) are
     // recorded in the measured frame, the next frame traces the batch in the queue's order and records them again,
-    // and the sort is remembered only if it tested fewer. On a still scene the remembered order then never tests
+    // and the sort is remembered only if it tested fewer, by more than the sort costs (--sort-batch-cost,
+    // --sort-ray-cost: order_choice.h, sort_pays). On a still scene the remembered order then never tests
     // more pairs than stage 04, by construction; the check costs one frame's gain where the sort wins (the checked
     // frame is stage 04's, with no sort). With probe_every < 3 no check is made (no frame would be left to use it).
     static constexpr int kCheckOrder = 3;   // remembered_order: trace in the queue's order, to check a kept sort
@@ -71,6 +72,7 @@ private:
         unsigned unmeasured = 0;   // frames it was taken unmeasured since
         int to_check = 0;          // the sorted order the last measure kept, still to be checked (0: none)
         std::uint64_t sorted_pairs = 0;   // the pairs that order tested when measured
+        std::uint64_t rays = 0;           // the batch's rays when last measured
     };
     std::array<std::array<BatchMemory, kOrderRecords>, 2> memory_{};
     std::array<std::uint32_t, 2> batch_index_{};        // the frame's batches of each kind so far

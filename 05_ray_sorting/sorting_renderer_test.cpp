@@ -147,15 +147,22 @@ std::uint64_t sort_count(const FrameResult& r, const char* kind, const char* key
     return b.contains(kind) ? std::uint64_t(b[kind][key]) : 0u;
 }
 
-// `count` frames of the built-in scene `name` at 48x36, one renderer with --sort auto every `probe_every` frames;
-// `reference` gets the scene's --sort off frame (stage 04's).
-std::vector<FrameResult> auto_frames(const std::string& name, int count, unsigned probe_every, FrameResult& reference) {
+// `count` frames of the built-in scene `name` at 48x36, one renderer with --sort auto every `probe_every` frames
+// (and `costs`: --sort-batch-cost and --sort-ray-cost); `reference` gets the scene's --sort off frame (stage 04's).
+struct SortCosts {
+    unsigned batch = kSortBatchCost, ray = kSortRayCost;
+};
+constexpr SortCosts kAnySaving{0, 0};   // a kept sort stays if it saves any pair: the cycle's own tests
+std::vector<FrameResult> auto_frames(const std::string& name, int count, unsigned probe_every, FrameResult& reference,
+                                     SortCosts costs = {}) {
     const Scene s = builtin_scene(name);
     SortOptions off;
     off.mode = SortMode::off;
     reference = render_05(s, 48, 36, off);
     RaySortingRenderer renderer;
     renderer.sort_options.probe_every = probe_every;
+    renderer.sort_options.batch_cost = costs.batch;
+    renderer.sort_options.ray_cost = costs.ray;
     std::vector<FrameResult> frames;
     for (int f = 0; f < count; ++f) frames.push_back(renderer.render(s, test_frame_settings(s, 48, 36, true)));
     return frames;
@@ -167,12 +174,13 @@ std::vector<FrameResult> auto_frames(const std::string& name, int count, unsigne
 // queue's order did; frame 5 measures again, frame 6 checks again. Every frame is the same frame as --sort off (image
 // and hits); the hierarchy's counts repeat with the cycle, and the remembered frames test no more pairs than either
 // the measured frame or stage 04 (absorption and material_maps keep some sorts, drop some and leave some batches in
-// the queue's order; mirror_box did until stage 04's split rule of 2026-12-06, and now drops none).
+// the queue's order; mirror_box did until stage 04's split rule of 2026-12-06, and now drops none). The sort's cost
+// is 0 here (any saving keeps a sort): at 48x36 no sort saves what its passes cost, and the cycle is the same with it.
 TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
     gpu::test_context();
     for (const char* name : {"absorption", "material_maps"}) {
         FrameResult reference;
-        const std::vector<FrameResult> frames = auto_frames(name, 6, 4, reference);
+        const std::vector<FrameResult> frames = auto_frames(name, 6, 4, reference, kAnySaving);
         const auto counts = [](const FrameResult& r) {   // the hierarchy's counts per ray kind, not its times
             nlohmann::json kinds = r.extra["ray_hierarchy"]["kinds"];
             for (auto& [kind, k] : kinds.items()) k.erase("time_ms");
@@ -226,6 +234,8 @@ TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
     }
     const Scene s = builtin_scene("absorption");
     RaySortingRenderer renderer;
+    renderer.sort_options.batch_cost = kAnySaving.batch;
+    renderer.sort_options.ray_cost = kAnySaving.ray;
     for (int f = 0; f < 2; ++f) renderer.render(s, test_frame_settings(s, 48, 36, true));
     const FrameResult third = renderer.render(s, test_frame_settings(s, 48, 36, true));
     EXPECT_GT(std::uint64_t(third.extra["ray_sorting"]["batches"]["trace"]["fine_batches"]), 0u)
@@ -250,6 +260,36 @@ TEST(RaySortingRenderer, AfterTheCheckSortingNeverTestsMorePairsThanTheQueueOrde
             EXPECT_EQ(sort_count(frames[1], "shadow", "sorts_dropped"), 1u) << name;
             EXPECT_EQ(pairs_tested(frames[2]), pairs_tested(reference)) << name << ": and the check drops it";
         }
+    }
+}
+
+// The check weighs a sort's cost (--sort-batch-cost, --sort-ray-cost; order_choice.h, sort_pays): the sorts that
+// any saving keeps (absorption and material_maps at 48x36: the cycle test above) are all dropped when a batch's sort
+// costs more than any batch can save, by either term, and the third frame is then stage 04's; the default costs keep
+// at most the sorts that any saving keeps.
+TEST(RaySortingRenderer, TheCheckDropsASortThatSavesLessThanItCosts) {
+    gpu::test_context();
+    const auto kept_sorts = [](const FrameResult& r) {
+        return sort_count(r, "trace", "sorted_batches") + sort_count(r, "shadow", "sorted_batches");
+    };
+    for (const char* name : {"absorption", "material_maps"}) {
+        FrameResult reference;
+        const std::vector<FrameResult> any = auto_frames(name, 3, SortOptions{}.probe_every, reference, kAnySaving);
+        ASSERT_GT(kept_sorts(any[2]), 0u) << name << ": with any saving some sort must be kept";
+        for (SortCosts costs : {SortCosts{100000000, 0}, SortCosts{0, 100000}}) {
+            const std::vector<FrameResult> frames = auto_frames(name, 3, SortOptions{}.probe_every, reference, costs);
+            EXPECT_EQ(kept_sorts(frames[0]), kept_sorts(any[0])) << name << ": the measure does not weigh the cost";
+            EXPECT_EQ(kept_sorts(frames[2]), 0u) << name << " " << costs.batch << " " << costs.ray;
+            EXPECT_EQ(sort_count(frames[1], "trace", "sorts_dropped") + sort_count(frames[1], "shadow", "sorts_dropped"),
+                      kept_sorts(frames[0])) << name << ": the check drops every kept sort";
+            EXPECT_EQ(pairs_tested(frames[2]), pairs_tested(reference)) << name << ": the third frame is stage 04's";
+            for (const FrameResult& f : frames) expect_same_frame(reference, f, name);
+        }
+        const std::vector<FrameResult> defaults = auto_frames(name, 3, SortOptions{}.probe_every, reference);
+        EXPECT_LE(kept_sorts(defaults[2]), kept_sorts(any[2])) << name;
+        EXPECT_LE(pairs_tested(defaults[2]), pairs_tested(reference)) << name;
+        EXPECT_EQ(defaults[2].extra["ray_sorting"]["batch_cost"], kSortBatchCost) << name;
+        EXPECT_EQ(defaults[2].extra["ray_sorting"]["ray_cost"], kSortRayCost) << name;
     }
 }
 
