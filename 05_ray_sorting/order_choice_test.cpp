@@ -182,8 +182,6 @@ TEST(GpuOrderChoice, OfTwoSortedOrdersTheTighterIsKept) {
     EXPECT_EQ(choose_order(100, 50), 1);
 }
 
-// Equal sums, and a sort tighter by 1/32 or less, keep the queue's order (a sort that gains that little is not worth
-// its passes); huge sums compare exactly.
 // The check's rule: a sort stays only where the pairs it saved exceed its cost, batch_cost + ray_cost x rays.
 TEST(OrderChoice, ASortStaysOnlyWhereThePairsItSavesPayForIt) {
     EXPECT_TRUE(sort_pays(1000, 999, 500, 0, 0)) << "no cost: any saving";
@@ -193,10 +191,12 @@ TEST(OrderChoice, ASortStaysOnlyWhereThePairsItSavesPayForIt) {
     EXPECT_TRUE(sort_pays(10000, 3999, 1000, 4000, 2)) << "saves 6001";
     EXPECT_FALSE(sort_pays(10000, 3999, 1001, 4000, 2)) << "one ray more costs 2 more";
     EXPECT_FALSE(sort_pays(0, 0, 0, 0, 0));
-    EXPECT_FALSE(sort_pays(UINT64_MAX, 0, 0, UINT64_MAX, 0)) << "no overflow at the ends";
+    EXPECT_FALSE(sort_pays(UINT64_MAX, 0, 0, UINT64_MAX, 0)) << "the largest saving against the largest cost";
     EXPECT_TRUE(sort_pays(UINT64_MAX, 0, 0, UINT64_MAX - 1, 0));
 }
 
+// Equal sums, and a sort tighter by 1/32 or less, keep the queue's order (a sort that gains that little is not worth
+// its passes); huge sums compare exactly.
 TEST(OrderChoice, ATieOrASmallGainKeepsTheQueuesOrder) {
     EXPECT_FALSE(keep_sorted_order(3200, 3200));
     EXPECT_FALSE(keep_sorted_order(3200, 3100));   // exactly 1/32 tighter

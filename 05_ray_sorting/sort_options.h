@@ -38,8 +38,8 @@ struct SortOptions {
 };
 
 // --sort, --key-bits, --direction-bits, --shadow-direction-bits, --fine-direction-bits, --probe-every,
-// --sort-batch-cost and --sort-ray-cost, written
-// into `options` when parsed; a direction width given above --key-bits is refused once the line is parsed.
+// --sort-batch-cost and --sort-ray-cost, written into `options` when parsed; a direction width given above --key-bits
+// is refused once the line is parsed.
 void add_sort_options(CLI::App& app, SortOptions& options);
 
 }  // namespace rt
