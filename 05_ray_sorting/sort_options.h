@@ -9,7 +9,8 @@ namespace rt {
 enum class SortMode {
     off,         // queue order: exactly stage 04
     on,          // every batch sorted
-    automatic,   // every batch sorted, the sorted order kept only where it is tighter (order_choice.h)
+    automatic,   // every batch sorted, the sorted order kept only where it is tighter (order_choice.h) and, checked,
+                 // saves more pairs than it costs (sort_pays)
 };
 const char* sort_mode_name(SortMode mode);   // "off", "on", "auto"
 

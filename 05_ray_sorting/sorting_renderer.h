@@ -3,8 +3,9 @@
 // through the stage-04 hierarchy, and their results put back in queue order: the pipeline (and so the image, the
 // hits and the ray counts) cannot tell the difference; only the hierarchy's cost changes. --sort off is stage 04;
 // --sort auto (the default) keeps a batch's sorted order only when it makes the hierarchy's lowest nodes tighter
-// than the queue's order (order_choice.h), so sorting never widens the nodes it was meant to tighten; and a batch
-// takes the order that won without measuring again, until --probe-every frames have passed (below).
+// than the queue's order (order_choice.h), so sorting never widens the nodes it was meant to tighten, and, checked
+// in the next frame, only when it saves more pairs than the sort costs (below); and a batch takes the order that won
+// without measuring again, until --probe-every frames have passed (below).
 #pragma once
 
 #include <array>
