@@ -145,7 +145,18 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
         tree_groups_.bind(gpu::kWavefrontBindingTraversalFirst + 4);
         tree_codes_.bind(gpu::kWavefrontBindingTraversalFirst + 5);
     };
-    for (std::size_t l = 0; l < sizes.size(); ++l) {
+    // A small tree: every level in one work group, one dispatch (ot_build.comp, mode 5); else a pass a dispatch.
+    const bool one_group = n <= one_group_tree_triangles;
+    if (one_group) {
+        bind();
+        const Program& all = tree_[kTreeOneGroup];
+        all.set("ot_levels", unsigned(sizes.size()));
+        all.set("ot_codes_first", kLevelVec4s);
+        all.set("ot_half", half);
+        all.dispatch(1);
+        barrier();
+    }
+    for (std::size_t l = 0; !one_group && l < sizes.size(); ++l) {
         const std::uint32_t below = l == 0 ? n : sizes[l - 1];
         bind();
         set("ot_level", unsigned(l + 1));

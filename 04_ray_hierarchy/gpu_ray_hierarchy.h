@@ -52,6 +52,10 @@ struct ObjectRange {
 // Runs of equal material id, at most `max_count` triangles each.
 std::vector<ObjectRange> object_ranges(const std::vector<std::uint32_t>& material_ids, std::uint32_t max_count = 4096);
 
+// Object trees of at most this many triangles are built in one dispatch (ot_build.comp, mode 5): on a small scene the
+// tree's passes are mostly dispatches, four or five a level.
+constexpr std::size_t kOneGroupTreeTriangles = 4096;
+
 class GpuRayHierarchy {
 public:
     GpuRayHierarchy();
@@ -86,6 +90,9 @@ public:
     // build_object_tree's every_4). The limit it is held against: the GL limit, or this many bytes (for the tests).
     bool tree_every_4() const { return tree_every_4_; }
     std::size_t tree_limit_for_testing = 0;
+    // Trees of at most this many triangles are built by one work group in one dispatch (ot_build.comp, mode 5),
+    // larger ones a pass a dispatch; the same tree either way. Tests set it to build one tree both ways.
+    std::size_t one_group_tree_triangles = kOneGroupTreeTriangles;
     // The tree as the GPU built it (order, nodes, levels), for the tests: the same as build_object_tree's.
     ObjectTree download_tree() const;
     // The bounding spheres of the finest objects the ray nodes are culled against, as prepare() left them: the
@@ -141,7 +148,7 @@ private:
         tally_pass_;
     gpu::Program cull_children_;   // rh_cull.comp writing the children itself (a step whose children fit one window)
     // ot_build.comp, one program per mode (OT_MODE): codes, clusters, level, cuts, heads.
-    enum TreeMode { kTreeCodes, kTreeClusters, kTreeLevel, kTreeCuts, kTreeHeads, kTreeModes };
+    enum TreeMode { kTreeCodes, kTreeClusters, kTreeLevel, kTreeCuts, kTreeHeads, kTreeOneGroup, kTreeModes };
     std::array<gpu::Program, kTreeModes> tree_;
     void compile_tree(const gpu::ShaderDefines& defines);
     gpu::Scan scan_;   // the hit list's prune (prune_hits) and the tree's groups (build_tree)

@@ -150,7 +150,7 @@ TEST(GpuRayHierarchy, CraftedRaysGetBruteForcesHitsAndOcclusion) {
 
 // The object tree built on the GPU (ot_build.comp and the shared radix sort) is the CPU twin's (build_object_tree):
 // the same leaf order and levels, node for node; every GPU sphere holds its children; on a scene far from the
-// origin and a tiny one too.
+// origin and a tiny one too; built by one work group or a pass a dispatch.
 TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
     gpu::test_context();
     const Scene cornell = builtin_scene("cornell");
@@ -167,14 +167,18 @@ TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
                                       {"one triangle", triangles_at({glm::vec3(1.0f)})},
                                       {"37 triangles at one place", triangles_at(std::vector<glm::vec3>(37))},
                                       {"codes 2^k (grouped every 4)", powers_of_two}}) {
-        // Prefix groups, and every 4 nodes (the build's choice where the prefix groups' worst case passes the limit).
-        for (const bool every_4 : {false, true}) {
-            const std::string what = name + (every_4 ? ", every 4" : "");
+        // Prefix groups, and every 4 nodes (the build's choice where the prefix groups' worst case passes the limit);
+        // each built by one work group (ot_build.comp, mode 5) and a pass a dispatch, whatever the triangle count.
+        for (const auto& [every_4, one_group] : {std::pair{false, true}, std::pair{false, false},
+                                                 std::pair{true, true}, std::pair{true, false}}) {
+            const std::string what =
+                name + (every_4 ? ", every 4" : "") + (one_group ? ", one work group" : ", a pass a dispatch");
             gpu::GpuScene gpu_scene;
             gpu_scene.upload(scene);
             GpuRayHierarchy h;
             h.options.objects = ObjectMode::tree;
             h.tree_limit_for_testing = every_4 ? 64 : 0;
+            h.one_group_tree_triangles = one_group ? scene.triangle_count() : 0;
             h.prepare(gpu_scene, object_ranges(scene.material_ids), scene.bounds);
             ASSERT_EQ(h.tree_every_4(), every_4 && scene.triangle_count() > 2) << what;
             const ObjectTree gpu = h.download_tree();
