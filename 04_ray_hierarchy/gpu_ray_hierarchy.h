@@ -147,7 +147,7 @@ private:
     gpu::Program build_, cull_, expand_, leaf_closest_, leaf_shadow_, fold_, args_pass_,
         tally_pass_;
     gpu::Program cull_children_;   // rh_cull.comp writing the children itself (a step whose children fit one window)
-    // ot_build.comp, one program per mode (OT_MODE): codes, clusters, level, cuts, heads.
+    // ot_build.comp, one program per mode (OT_MODE): codes, clusters, level, cuts, heads, and all of a small tree.
     enum TreeMode { kTreeCodes, kTreeClusters, kTreeLevel, kTreeCuts, kTreeHeads, kTreeOneGroup, kTreeModes };
     std::array<gpu::Program, kTreeModes> tree_;
     void compile_tree(const gpu::ShaderDefines& defines);
