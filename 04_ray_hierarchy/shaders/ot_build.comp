@@ -69,6 +69,8 @@ void ot_set_level_word(uint w, uint v) { ot_codes[w / 4u][w % 4u] = v; }
 
 // Nodes on the level below this one (the triangles below level 1); 0 when that level is empty.
 uint ot_below() { return ot_level == 1u ? ot_triangles : ot_level_word(2u * (ot_level - 1u)); }
+// Does this level group its m nodes below? Not when one node below is the root: no level above it.
+bool ot_grouped(uint m) { return ot_level == 1u || m > 1u; }
 uint ot_first_code(uint k) { return ot_level == 1u ? ot_keys[k] : ot_codes[ot_codes_in + k].x; }
 uint ot_last_code(uint k) { return ot_level == 1u ? ot_keys[k] : ot_codes[ot_codes_in + k].y; }
 
@@ -133,14 +135,14 @@ void ot_code_at(uint i) {
 // Mode 3 for node i below.
 void ot_cut_at(uint i) {
     const uint m = ot_below();
-    const bool grouped = ot_level == 1u || m > 1u;   // one node below is the root: no level above it
+    const bool grouped = ot_grouped(m);
     ot_groups[i] = grouped && i < m && (i == 0u || ot_cut(i - 1u, m)) ? 1u : 0u;
 }
 
 // Mode 4 for node i below.
 void ot_head_at(uint i) {
     const uint m = ot_below();
-    const bool grouped = ot_level == 1u || m > 1u;
+    const bool grouped = ot_grouped(m);
     const uint made = ot_level_word(0u);
     const bool fallback = ot_every_4 == 1u || 2u * made > m;   // group_heads: a level is at least halved
     const uint groups = !grouped ? 0u : fallback ? (m + OT_BRANCHING - 1u) / OT_BRANCHING : made;
