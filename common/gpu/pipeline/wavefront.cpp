@@ -367,46 +367,38 @@ void Wavefront::run_rays(Buffer& rays, const std::vector<RayRun>& runs, int dept
 }
 
 void Wavefront::run_trace(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs) {
-    const PassTimer timed(timer, "trace");
-    results_.reserve(count * sizeof(WavefrontTraceResult));
-    if (traversal_.trace_batch) {
-        traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this,
-                                std::move(runs)});
-    } else {
-        rays.bind(kBindingWavefrontRaysIn);
-        results_.bind(kBindingWavefrontResults);
-        if (tests_per_pixel_) tests_per_pixel_.bind(kBindingWavefrontTestsPerPixel);
-        bind_traversal();
-        trace_.set("wf_input_first", unsigned(first));
-        trace_.set("wf_input_count", unsigned(count));
-        trace_.dispatch_threads(count);
-    }
-    record_pass("trace");
-    pass_barrier();
-    check_gl("wavefront: trace pass");
-    if (settings_.record_hits) record_rays(rays, first, count, false);
+    run_traversal(false, rays, first, count, std::move(runs));
 }
 
 void Wavefront::run_shadow(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs) {
-    const PassTimer timed(timer, "shadow");
-    results_.reserve(count * sizeof(std::uint32_t));
-    if (traversal_.shadow_batch) {
-        traversal_.shadow_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this,
-                                 std::move(runs)});
+    run_traversal(true, rays, first, count, std::move(runs));
+    run_collect(shadow_collect_, rays, first, count);
+}
+
+// The traversal of rays [first, first + count) into results_: closest hits (WavefrontTraceResult each) or, `shadow`,
+// occlusion (a uint each); by the stage's batch callback, or by its GLSL in the trace or shadow pass.
+void Wavefront::run_traversal(bool shadow, Buffer& rays, std::size_t first, std::size_t count,
+                              std::vector<RayRun> runs) {
+    const char* name = shadow ? "shadow" : "trace";
+    const PassTimer timed(timer, name);
+    results_.reserve(count * (shadow ? sizeof(std::uint32_t) : sizeof(WavefrontTraceResult)));
+    const auto& batch = shadow ? traversal_.shadow_batch : traversal_.trace_batch;
+    if (batch) {
+        batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this, std::move(runs)});
     } else {
+        const Program& pass = shadow ? shadow_ : trace_;
         rays.bind(kBindingWavefrontRaysIn);
         results_.bind(kBindingWavefrontResults);
         if (tests_per_pixel_) tests_per_pixel_.bind(kBindingWavefrontTestsPerPixel);
         bind_traversal();
-        shadow_.set("wf_input_first", unsigned(first));
-        shadow_.set("wf_input_count", unsigned(count));
-        shadow_.dispatch_threads(count);
+        pass.set("wf_input_first", unsigned(first));
+        pass.set("wf_input_count", unsigned(count));
+        pass.dispatch_threads(count);
     }
-    record_pass("shadow");
+    record_pass(name);
     pass_barrier();
-    check_gl("wavefront: shadow pass");
-    if (settings_.record_hits) record_rays(rays, first, count, true);
-    run_collect(shadow_collect_, rays, first, count);
+    check_gl(std::string("wavefront: ") + name + " pass");
+    if (settings_.record_hits) record_rays(rays, first, count, shadow);
 }
 
 // The pass after a traversal: reads results_ (one per ray) and adds radiance (and, for trace, fills hit slots).

@@ -217,6 +217,7 @@ private:
     void run_rays(Buffer& rays, const std::vector<RayRun>& runs, int depth);
     void run_shadow(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs);
     void run_trace(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs);
+    void run_traversal(bool shadow, Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs);
     void run_collect(const Program& collect, Buffer& rays, std::size_t first, std::size_t count);
     void record_primary_slots(std::size_t slots);
     void record_rays(const Buffer& rays, std::size_t first, std::size_t count, bool shadow);
