@@ -4,7 +4,7 @@
 #                                      builtin:cornell, 2 frames: every run exact, exit 0.
 #   check_exact.finds_a_difference     a run whose rays are not 02's (--offset epsilon moves every secondary origin)
 #                                      and one that spawns fewer (--max-depth 1): both reported DIFFERS, exit 1; a
-#                                      run the stage refuses: FAILED.
+#                                      run the stage refuses (--width 0): FAILED.
 #   check_exact.bad_arguments          no such scene, no such stage: one line, exit 2.
 # Included from tests/CMakeLists.txt it adds the tests; run with cmake -P it runs one CASE.
 if(NOT CMAKE_SCRIPT_MODE_FILE)
@@ -45,12 +45,15 @@ if(CASE STREQUAL "cornell_every_variant")
     message(FATAL_ERROR "scripts/check-exact on builtin:cornell: exit ${rc} (want 0, no run differing, failed or "
                         "skipped, and table.md):\n${out}${err}")
   endif()
-elseif(CASE STREQUAL "finds_a_difference")
+elseif(CASE STREQUAL "finds_a_difference")   # on the last GPU stage (05 in the course) and the second (03)
+  string(REPLACE "|" ";" stages "${STAGES}")
+  list(GET stages 1 second)
+  list(GET stages -1 last)
   check_exact(rc out err --scenes builtin:cornell --frames 1 --work ${WORK} --only-variants
-              "--variant=05_ray_sorting:--offset epsilon --epsilon 0.01" "--variant=04_ray_hierarchy:--max-depth 1"
-              "--variant=03_uniform_grid:--grid-lambda 0")
-  if(NOT rc EQUAL 1 OR NOT out MATCHES "05_ray_sorting --offset epsilon --epsilon 0.01: DIFFERS \\(frame 0: hits"
-     OR NOT out MATCHES "04_ray_hierarchy --max-depth 1: DIFFERS" OR NOT out MATCHES "--grid-lambda 0: FAILED"
+              "--variant=${last}:--offset epsilon --epsilon 0.01" "--variant=${second}:--max-depth 1"
+              "--variant=${last}:--width 0")
+  if(NOT rc EQUAL 1 OR NOT out MATCHES "${last} --offset epsilon --epsilon 0.01: DIFFERS \\(frame 0: hits"
+     OR NOT out MATCHES "${second} --max-depth 1: DIFFERS" OR NOT out MATCHES "${last} --width 0: FAILED"
      OR NOT out MATCHES "0 runs exact, 3 differed or failed")
     message(FATAL_ERROR "scripts/check-exact let a wrong run pass (exit ${rc}, want 1):\n${out}${err}")
   endif()
