@@ -22,17 +22,13 @@ if(NOT CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-function(check_exact rc_var out_var err_var)   # check_exact(<rc> <stdout> <stderr> args...)
-  execute_process(COMMAND ${SCRIPT} --build-dir ${BUILD} --width 16 --height 12 ${ARGN}
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  set(${rc_var} "${rc}" PARENT_SCOPE)
-  set(${out_var} "${out}" PARENT_SCOPE)
-  set(${err_var} "${err}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/script_case.cmake)   # run_script, expect_refusal
+set(check_exact ${SCRIPT} --build-dir ${BUILD} --width 16 --height 12)
 
 file(REMOVE_RECURSE ${WORK})
 if(CASE STREQUAL "cornell_every_variant")
-  check_exact(rc out err --scenes builtin:cornell --frames 2 --work ${WORK} --md ${WORK}/table.md)
+  run_script(rc out err ${check_exact} --scenes builtin:cornell --frames 2 --work ${WORK}
+             --md ${WORK}/table.md)
   string(REPLACE "|" ";" stages "${STAGES}")
   list(POP_FRONT stages reference)
   foreach(stage IN LISTS stages)   # every stage after the reference ran, its defaults among its runs
@@ -49,7 +45,7 @@ elseif(CASE STREQUAL "finds_a_difference")   # on the last GPU stage (05 in the 
   string(REPLACE "|" ";" stages "${STAGES}")
   list(GET stages 1 second)
   list(GET stages -1 last)
-  check_exact(rc out err --scenes builtin:cornell --frames 1 --work ${WORK} --only-variants
+  run_script(rc out err ${check_exact} --scenes builtin:cornell --frames 1 --work ${WORK} --only-variants
               "--variant=${last}:--offset epsilon --epsilon 0.01" "--variant=${second}:--max-depth 1"
               "--variant=${last}:--width 0")
   if(NOT rc EQUAL 1 OR NOT out MATCHES "${last} --offset epsilon --epsilon 0.01: DIFFERS \\(frame 0: hits"
@@ -59,11 +55,7 @@ elseif(CASE STREQUAL "finds_a_difference")   # on the last GPU stage (05 in the 
   endif()
 elseif(CASE STREQUAL "bad_arguments")
   foreach(args "--scenes;${WORK}/no_such.gltf" "--variant=06_no_such_stage:--x" "--scenes;${WORK}/no_folder/")
-    check_exact(rc out err ${args})
-    string(STRIP "${err}" err)
-    if(NOT rc EQUAL 2 OR NOT err MATCHES "^check-exact: error: " OR err MATCHES "\n" OR NOT out STREQUAL "")
-      message(FATAL_ERROR "scripts/check-exact ${args}: expected exit 2 and one line, got ${rc}:\n${err}${out}")
-    endif()
+    expect_refusal(check-exact ${check_exact} ${args})
   endforeach()
 else()
   message(FATAL_ERROR "check_exact.cmake: no case ${CASE}")
