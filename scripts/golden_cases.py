@@ -32,7 +32,12 @@ def golden_size():
     return size["WIDTH"], size["HEIGHT"]
 
 
+def frame_suffixes(frames):
+    """What frame_path (common/app) adds to a file name for each of FRAMES frames: _0000 ... _(N-1) with --frames N
+    above 1; one frame keeps the name as given ("")."""
+    return [f"_{i:04d}" for i in range(frames)] if frames > 1 else [""]
+
+
 def last_frame_suffix(args):
-    """What frame_path adds to a file name for the frame the golden test compares: with --frames N the stage writes
-    <name>_0000 ... <name>_(N-1) and the last one is compared; one frame keeps the name as given."""
-    return f"_{int(args[args.index('--frames') + 1]) - 1:04d}" if "--frames" in args else ""
+    """The suffix of the frame the golden test compares: the last of --frames N (frame_suffixes), "" without it."""
+    return frame_suffixes(int(args[args.index("--frames") + 1]))[-1] if "--frames" in args else ""

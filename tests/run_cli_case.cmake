@@ -209,6 +209,24 @@ elseif(MODE STREQUAL "frames")
   if(NOT frames EQUAL 3)
     message(FATAL_ERROR "stats: frames = ${frames}")
   endif()
+  # --frames 1 writes the name as given, and the tests' rule for the compared frame (last_frame.cmake) names the
+  # files a stage writes in both cases.
+  file(REMOVE ${OUT_DIR}/one.png ${OUT_DIR}/one_0000.png)
+  render(rc err --scene builtin:dynamic --width 8 --height 6 --quiet --frames 1 --out ${OUT_DIR}/one.png)
+  if(NOT rc EQUAL 0 OR NOT EXISTS ${OUT_DIR}/one.png OR EXISTS ${OUT_DIR}/one_0000.png)
+    message(FATAL_ERROR "--frames 1 did not write one.png (and only it): ${rc} ${err}")
+  endif()
+  include(${CMAKE_CURRENT_LIST_DIR}/last_frame.cmake)
+  foreach(run "anim|3" "one|1")
+    string(REPLACE "|" ";" run "${run}")
+    list(GET run 0 name)
+    list(GET run 1 count)
+    last_frame_suffix("--frames;${count}" suffix)
+    if(NOT EXISTS ${OUT_DIR}/${name}${suffix}.png)
+      message(FATAL_ERROR "last_frame_suffix: ${name}${suffix}.png for --frames ${count}, "
+                          "a file the stage did not write")
+    endif()
+  endforeach()
 elseif(MODE STREQUAL "refused")
   # Hostile input: the case runs in its own folder of fixtures, @DIR@ in ARGS. It must exit 2 with one line
   # matching EXPECT, print no raw std::filesystem text and no 20-digit number, and leave the folder exactly as it was:
