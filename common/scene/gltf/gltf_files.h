@@ -20,10 +20,12 @@ struct FileReads {
     std::vector<std::string> files;   // every file read, in order
     std::string error;                // the first refusal, one line naming the path ("" when none)
     std::uint64_t texels = 0;         // pixels of the images decoded so far
+    std::string base_dir;             // the glTF file's folder, which tinygltf puts before each URI
 };
 
-// The image decoder tinygltf is given: checks the size in the header against the limits above, then decodes with
-// tinygltf's own (stb_image). user_data is the FileReads.
+// The image decoder tinygltf is given: a PNG or JPEG image has its size in the header checked against the limits
+// above (and a JPEG its end), then is decoded with tinygltf's own (stb_image); any other format is left undecoded,
+// with a warning. user_data is the FileReads.
 bool load_image_within_limits(tinygltf::Image* image, int index, std::string* err, std::string* warn, int req_width,
                               int req_height, const unsigned char* bytes, int size, void* user_data);
 

@@ -10,12 +10,14 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
 
 namespace rt {
 namespace {
@@ -158,7 +160,69 @@ TEST_F(GltfHostile, ImageLargerThanTheLimitIsRefusedBeforeDecoding) {
     std::ofstream(file("big.png"), std::ios::binary) << png;
     json doc = triangle();
     doc["images"] = {{{"uri", "big.png"}}};
-    expect_refused(doc, "image 0 is 20000 x 100 pixels, more than 16384 on a side");
+    expect_refused(doc, "image 0 (big.png) is 20000 x 100 pixels, more than 16384 on a side");
+}
+
+// A JPEG of w x h grey pixels, written by OpenImageIO (the tests' image library).
+std::string jpeg_bytes(const std::string& path, int w, int h) {
+    const std::vector<unsigned char> pixels(std::size_t(w) * std::size_t(h), 128);
+    auto out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(w, h, 1, OIIO::TypeDesc::UINT8)) &&
+                out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) && out->close());
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST_F(GltfHostile, JpegCutShortOrClaimingMorePixelsThanItsDataIsRefused) {
+    // stb_image decodes both without complaint, padding what is missing.
+    const std::string whole = jpeg_bytes(file("whole.jpg"), 64, 64);
+    json doc = triangle();
+    doc["images"] = {{{"uri", "whole.jpg"}}};
+    EXPECT_NO_THROW(load_gltf(write(doc)));
+    std::ofstream(file("half.jpg"), std::ios::binary) << whole.substr(0, whole.size() / 2);
+    doc["images"][0]["uri"] = "half.jpg";
+    expect_refused(doc, "image 0 (half.jpg) is a truncated JPEG (no end-of-image marker)");
+    std::string claims = whole;   // the frame header (SOF0) says 16000 x 16000
+    const std::size_t sof = claims.find("\xFF\xC0");
+    ASSERT_NE(sof, std::string::npos);
+    claims.replace(sof + 5, 4, std::string("\x3E\x80\x3E\x80", 4));
+    std::ofstream(file("claims.jpg"), std::ios::binary) << claims;
+    doc["images"][0]["uri"] = "claims.jpg";
+    expect_refused(doc, "image 0 (claims.jpg) has too little data for its 16000 x 16000 pixels");
+}
+
+TEST_F(GltfHostile, PngCutShortIsRefusedNamingTheImage) {
+    std::string png = "\x89PNG\r\n\x1a\n";
+    png += std::string("\0\0\0\x0dIHDR\0\0\0\x40\0\0\0\x40\x08\x00\x00\x00\x00", 21);   // 64 x 64 grey
+    png += std::string(4, '\0');   // the chunk's CRC; no image data follows
+    std::ofstream(file("cut.png"), std::ios::binary) << png;
+    json doc = triangle();
+    doc["images"] = {{{"uri", "cut.png"}}};
+    expect_refused(doc, "image 0 (cut.png) cannot be decoded (a corrupt or truncated PNG)");
+}
+
+TEST_F(GltfHostile, ImageInAFormatGltfDoesNotAllowIsNotDecodedAndATextureOfItIsRefused) {
+    // A BMP header claiming 20000 x 20000 pixels and no pixels: stb_image would allocate 1.2 GB and pad it.
+    std::string bmp = "BM" + std::string(12, '\0');
+    bmp += std::string("\x28\0\0\0\x20\x4e\0\0\x20\x4e\0\0\x01\0\x18\0", 16) + std::string(24, '\0');
+    std::ofstream(file("huge.bmp"), std::ios::binary) << bmp;
+    json doc = triangle();
+    doc["images"] = {{{"uri", "huge.bmp"}}};
+    std::string warnings;
+    EXPECT_NO_THROW(load_gltf(write(doc), &warnings));
+    EXPECT_NE(warnings.find("image 0 (huge.bmp) is not a PNG or JPEG image: not decoded"), std::string::npos)
+        << warnings;
+    doc["textures"] = {{{"source", 0}}};
+    expect_refused(doc, "texture 0: image 0 is not a PNG or JPEG image");
+}
+
+TEST_F(GltfHostile, DataUriOfAMediaTypeGltfDoesNotAllowIsRefusedByItsTypeAndALongUriByItsEnds) {
+    // tinygltf hands such a URI to the file callbacks as a path; the refusal names its media type, not its data.
+    json doc = triangle();
+    doc["images"] = {{{"uri", "data:image/x-tga;base64," + std::string(4000, 'A')}}};
+    expect_refused(doc, "'data:image/x-tga;base64,...': a data URI of a media type glTF 2.0 does not allow");
+    doc["images"][0]["uri"] = std::string(4000, 'x') + ".png";   // a file URI that long is shown by its two ends
+    expect_refused(doc, "..." + std::string(56, 'x') + ".png': ");
 }
 
 TEST_F(GltfHostile, InputFilesListTheSceneAndEveryBufferRead) {

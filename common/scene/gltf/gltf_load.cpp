@@ -320,13 +320,14 @@ SceneAsset load_gltf(const std::string& path, std::string* warnings) {
 
     // Buffers and images by URI: regular files only, each recorded.
     FileReads reads;
+    const std::string base_dir = fs::path(path).parent_path().string();
+    reads.base_dir = base_dir;
     tinygltf::TinyGLTF gltf;
     gltf.SetFsCallbacks(regular_file_callbacks(reads));
     gltf.SetImageLoader(load_image_within_limits, &reads);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
-    const std::string base_dir = fs::path(path).parent_path().string();
     try {
         ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir)
                     : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),

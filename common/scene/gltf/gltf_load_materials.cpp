@@ -136,8 +136,8 @@ Texture Loader::texture(const tinygltf::Texture& t, std::size_t index) {
     if (out.name.empty()) out.name = img.name;
     const int comps = img.component;
     const int bytes = img.bits == 16 ? 2 : img.bits == 8 ? 1 : 0;
-    if (img.width <= 0 || img.height <= 0 || comps < 1 || comps > 4 || bytes == 0)
-        invalid(name + ": image " + std::to_string(t.source) + " could not be decoded");
+    if (img.width <= 0 || img.height <= 0 || comps < 1 || comps > 4 || bytes == 0)   // gltf_files.cpp left it
+        invalid(name + ": image " + std::to_string(t.source) + " is not a PNG or JPEG image");
     const std::size_t pixels = std::size_t(img.width) * std::size_t(img.height);
     if (img.image.size() < pixels * std::size_t(comps) * std::size_t(bytes))
         invalid(name + ": image " + std::to_string(t.source) + " has too little pixel data");
