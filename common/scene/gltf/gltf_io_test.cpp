@@ -467,6 +467,36 @@ TEST(GltfLoad, BadReferencesThrowSceneError) {
     expect_one_line_scene_error(dir.file("mat.gltf"), "material");
 }
 
+TEST(GltfLoad, TriangleStripAndFanAreReadAsTheTrianglesTheyStandFor) {
+    // A unit quad in z = 0 facing +z, as a strip of its 4 vertices in order (0 1 2 3: a zigzag) and as a fan over
+    // indices (0 1 3 2: around it). glTF 2.0 3.7.2.1: strip triangles {0,1,2}, {1,3,2}; fan {1,3,0}, {3,2,0}.
+    TempDir dir;
+    std::vector<unsigned char> bytes;
+    append(bytes, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+    append(bytes, std::vector<std::uint16_t>{0, 1, 3, 2});
+    std::ostringstream s;
+    s << R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],)"
+      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":5},)"
+      << R"({"attributes":{"POSITION":0},"indices":1,"mode":6}]}],)"
+      << R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},)"
+      << R"({"bufferView":1,"componentType":5123,"count":4,"type":"SCALAR"}],)"
+      << R"("bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":8}],)"
+      << R"("buffers":[{"byteLength":)" << bytes.size() << R"(,"uri":")" << data_uri(bytes) << R"("}]})";
+    write_text(dir.file("s.gltf"), s.str());
+    std::string warnings;
+    const SceneAsset a = load_gltf(dir.file("s.gltf"), &warnings);
+    EXPECT_EQ(warnings, "");
+    ASSERT_EQ(a.meshes[0].primitives.size(), 2u);
+    EXPECT_EQ(a.meshes[0].primitives[0].indices, (std::vector<std::uint32_t>{0, 1, 2, 1, 3, 2}));
+    EXPECT_EQ(a.meshes[0].primitives[1].indices, (std::vector<std::uint32_t>{1, 3, 0, 3, 2, 0}));
+    const Scene scene = flatten(a, {});
+    ASSERT_EQ(scene.triangle_count(), 4u);
+    for (std::size_t t = 0; t < 4; ++t) {   // every triangle keeps the quad's winding: its normal is +z
+        const glm::vec3 p0 = scene.positions[3 * t], p1 = scene.positions[3 * t + 1], p2 = scene.positions[3 * t + 2];
+        EXPECT_GT(glm::cross(p1 - p0, p2 - p0).z, 0.0f) << "triangle " << t;
+    }
+}
+
 TEST(GltfLoad, InterleavedStrideAndByteIndicesAndPointsSkipped) {
     TempDir dir;
     // Interleaved position + normal (byteStride 24), u8 indices, plus a POINTS primitive that must be skipped.
@@ -486,7 +516,7 @@ TEST(GltfLoad, InterleavedStrideAndByteIndicesAndPointsSkipped) {
     write_text(dir.file("i.gltf"), s.str());
     std::string warnings;
     const SceneAsset a = load_gltf(dir.file("i.gltf"), &warnings);
-    EXPECT_NE(warnings.find("not TRIANGLES"), std::string::npos) << warnings;
+    EXPECT_NE(warnings.find("mode 0 is points or lines, not triangles; skipped"), std::string::npos) << warnings;
     ASSERT_EQ(a.meshes[0].primitives.size(), 1u);   // no scenes: every parentless node is a root
     EXPECT_EQ(a.roots, std::vector<int>{0});
     const Primitive& p = a.meshes[0].primitives[0];

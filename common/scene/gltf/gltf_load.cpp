@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <numeric>
 #include <string_view>
 #include <system_error>
 
@@ -24,7 +25,25 @@ namespace rt {
 
 namespace gltf_detail {
 
-Primitive Loader::primitive(const tinygltf::Primitive& p, const std::string& name) {
+namespace {
+
+// A triangle strip's or fan's vertices as the triangle list they stand for (glTF 2.0, 3.7.2.1, "Topology Types"):
+// strip triangle i is {v_i, v_(i+1+i%2), v_(i+2-i%2)}, which keeps every triangle's winding; fan triangle i is
+// {v_(i+1), v_(i+2), v_0}.
+std::vector<std::uint32_t> triangle_list(const std::vector<std::uint32_t>& v, int mode) {
+    std::vector<std::uint32_t> out;
+    for (std::size_t i = 0; i + 2 < v.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+            out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+        else
+            out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+    }
+    return out;
+}
+
+}  // namespace
+
+Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::string& name) {
     Primitive out;
     check_index(p.material, model.materials.size(), name + ": material");
     out.material = p.material;
@@ -58,6 +77,14 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, const std::string& nam
             if (i >= nv)
                 invalid(name + ": index " + std::to_string(i) + " out of range (" + std::to_string(nv) +
                         " vertices)");
+    }
+    if (mode != TINYGLTF_MODE_TRIANGLES) {   // a strip or a fan, over its indices or its vertices in order
+        if (p.indices < 0) {
+            out.indices.resize(nv);
+            std::iota(out.indices.begin(), out.indices.end(), 0u);
+        }
+        out.indices = triangle_list(out.indices, mode);
+    } else if (p.indices >= 0) {
         if (out.indices.size() % 3 != 0) {
             warn(name + ": index count is not a multiple of 3; the rest is ignored");
             out.indices.resize(out.indices.size() / 3 * 3);
@@ -76,11 +103,12 @@ Mesh Loader::mesh(const tinygltf::Mesh& m, std::size_t index) {
         const tinygltf::Primitive& p = m.primitives[i];
         const std::string name = "mesh " + std::to_string(index) + " primitive " + std::to_string(i);
         const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
-        if (mode != TINYGLTF_MODE_TRIANGLES) {
-            warn(name + ": mode " + std::to_string(mode) + " is not TRIANGLES; skipped");
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            warn(name + ": mode " + std::to_string(mode) + " is points or lines, not triangles; skipped");
             continue;
         }
-        out.primitives.push_back(primitive(p, name));
+        out.primitives.push_back(primitive(p, mode, name));
     }
     return out;
 }

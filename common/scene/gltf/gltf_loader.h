@@ -90,7 +90,7 @@ struct Loader {
 
     // Each reads one object of the file, checked; `index` is its place in the file and `name` how messages call it.
     // Geometry, cameras, lights, nodes, animations and the scene are in gltf_load.cpp.
-    Primitive primitive(const tinygltf::Primitive& p, const std::string& name);
+    Primitive primitive(const tinygltf::Primitive& p, int mode, const std::string& name);   // TRIANGLES, strip or fan
 
     Mesh mesh(const tinygltf::Mesh& m, std::size_t index);
 
