@@ -497,6 +497,72 @@ TEST(GltfLoad, TriangleStripAndFanAreReadAsTheTrianglesTheyStandFor) {
     }
 }
 
+// A sparse accessor (glTF 2.0, 3.6.2.3) over a triangle's POSITION: its dense part is the buffer view's, or zeros
+// without one, and `count` substitutions replace elements. The glTF text for one case.
+std::string sparse_triangle_gltf(const std::string& accessor_base, const std::string& sparse) {
+    std::vector<unsigned char> bytes;
+    append(bytes, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});   // 0..35: the dense positions
+    append(bytes, std::vector<std::uint16_t>{1, 2});                // 36..39: substitution indices
+    append(bytes, std::vector<float>{5, 0, 0, 0, 5, 0});            // 40..63: their values
+    std::ostringstream s;
+    s << R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],)"
+      << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+      << R"("accessors":[{)" << accessor_base << R"("componentType":5126,"count":3,"type":"VEC3","sparse":)" << sparse
+      << R"(}],"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":4},)"
+      << R"({"buffer":0,"byteOffset":40,"byteLength":24}],)"
+      << R"("buffers":[{"byteLength":)" << bytes.size() << R"(,"uri":")" << data_uri(bytes) << R"("}]})";
+    return s.str();
+}
+
+TEST(GltfLoad, SparseAccessorReplacesItsElementsOverTheBufferViewOrZeros) {
+    TempDir dir;
+    const std::string two = R"({"count":2,"indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":2}})";
+    write_text(dir.file("dense.gltf"), sparse_triangle_gltf(R"("bufferView":0,)", two));
+    const std::vector<glm::vec3> over_dense = load_gltf(dir.file("dense.gltf")).meshes[0].primitives[0].positions;
+    EXPECT_EQ(over_dense, (std::vector<glm::vec3>{{0, 0, 0}, {5, 0, 0}, {0, 5, 0}}));
+    write_text(dir.file("zeros.gltf"), sparse_triangle_gltf("", two));   // no bufferView: the dense part is zeros
+    EXPECT_EQ(load_gltf(dir.file("zeros.gltf")).meshes[0].primitives[0].positions, over_dense);
+    std::string no_sparse = sparse_triangle_gltf("", two);   // neither: all zeros, a valid (if empty) triangle
+    const std::string sparse_member = ",\"sparse\":" + two;
+    no_sparse.erase(no_sparse.find(sparse_member), sparse_member.size());
+    write_text(dir.file("none.gltf"), no_sparse);
+    EXPECT_EQ(load_gltf(dir.file("none.gltf")).meshes[0].primitives[0].positions, std::vector<glm::vec3>(3));
+    const std::string one = R"({"count":1,"indices":{"bufferView":1,"byteOffset":2,"componentType":5123},)"
+                            R"("values":{"bufferView":2,"byteOffset":12}})";   // element 2 only
+    write_text(dir.file("one.gltf"), sparse_triangle_gltf(R"("bufferView":0,)", one));
+    EXPECT_EQ(load_gltf(dir.file("one.gltf")).meshes[0].primitives[0].positions,
+              (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 5, 0}}));
+}
+
+TEST(GltfLoad, SparseAccessorOutOfItsRangeOrOrderOrBuffersIsRefused) {
+    TempDir dir;
+    auto refused = [&](const std::string& sparse, const std::string& expected) {
+        write_text(dir.file("s.gltf"), sparse_triangle_gltf(R"("bufferView":0,)", sparse));
+        expect_one_line_scene_error(dir.file("s.gltf"), expected);
+    };
+    refused(R"({"count":4,"indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":2}})",
+            "count 4 is not from 1 to the accessor's count");
+    refused(R"({"count":2,"indices":{"bufferView":1,"componentType":5126},"values":{"bufferView":2}})",
+            "indices must be unsigned byte, short or int");
+    refused(R"({"count":2,"indices":{"bufferView":1,"componentType":5121},"values":{"bufferView":2}})",
+            "is not increasing and below the count");   // the bytes 1, 0, 2, 0 as u8: 1 then 0
+    refused(R"({"count":2,"indices":{"bufferView":1,"byteOffset":2,"componentType":5123},"values":{"bufferView":2}})",
+            "data exceeds its bufferView");
+    refused(R"({"count":2,"indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":2,"byteOffset":-4}})",
+            "");
+    refused(R"({"count":2,"indices":{"bufferView":9,"componentType":5123},"values":{"bufferView":2}})", "");
+}
+
+TEST(GltfLoad, AccessorsWithoutABufferViewPastTheirBudgetAreRefusedBeforeAllocating) {
+    // A few bytes of JSON asking for 2^24 + 1 zero positions: refused, not 256 MiB allocated and rendered.
+    TempDir dir;
+    std::string text = sparse_triangle_gltf(
+        "", R"({"count":2,"indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":2}})");
+    text.replace(text.find("\"count\":3"), 9, "\"count\":16777217");
+    write_text(dir.file("z.gltf"), text);
+    expect_one_line_scene_error(dir.file("z.gltf"), "without a bufferView add up to more than 16777216 elements");
+}
+
 TEST(GltfLoad, InterleavedStrideAndByteIndicesAndPointsSkipped) {
     TempDir dir;
     // Interleaved position + normal (byteStride 24), u8 indices, plus a POINTS primitive that must be skipped.

@@ -38,20 +38,29 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index,
 // copies are not bounded by the file's size; 2^28 elements (about 3 GiB as vec3) allow a 20-million-triangle mesh
 // with normals and texture coordinates, unindexed (docs/shading.md, "Limits").
 constexpr std::uint64_t kMaxLoadedElements = std::uint64_t(1) << 28;
+// Of them, those of accessors without a buffer view (zeros, but for a sparse accessor's substitutions): a few bytes of
+// JSON would otherwise ask for gigabytes. 2^24 elements are 256 MiB as the loader's vec4s.
+constexpr std::uint64_t kMaxZeroElements = std::uint64_t(1) << 24;
 
 struct Loader {
     const tinygltf::Model& model;
     std::string warnings;
     std::uint64_t loaded_elements = 0;
+    std::uint64_t zero_elements = 0;   // of them, without a buffer view
 
     // Counts an accessor's elements against kMaxLoadedElements before they are copied (a bad index is left for
     // view_accessor to report).
     int budget(int accessor, const std::string& what) {
         if (accessor < 0 || std::size_t(accessor) >= model.accessors.size()) return accessor;
-        loaded_elements += model.accessors[std::size_t(accessor)].count;
+        const tinygltf::Accessor& a = model.accessors[std::size_t(accessor)];
+        loaded_elements += a.count;
         if (loaded_elements > kMaxLoadedElements)
             invalid(what + ": the file's accessors add up to more than " + std::to_string(kMaxLoadedElements) +
                     " elements");
+        if (a.bufferView < 0) zero_elements += a.count;
+        if (zero_elements > kMaxZeroElements)
+            invalid(what + ": the file's accessors without a bufferView add up to more than " +
+                    std::to_string(kMaxZeroElements) + " elements");
         return accessor;
     }
 
