@@ -563,6 +563,42 @@ TEST(GltfLoad, AccessorsWithoutABufferViewPastTheirBudgetAreRefusedBeforeAllocat
     expect_one_line_scene_error(dir.file("z.gltf"), "without a bufferView add up to more than 16777216 elements");
 }
 
+TEST(GltfLoad, QuantizedAttributesAreReadWithKhrMeshQuantizationAndRefusedWithoutIt) {
+    // KHR_mesh_quantization: SHORT positions (not normalized: their values, scaled back by the node), BYTE normalized
+    // normals, UNSIGNED_SHORT texture coordinates (not normalized). Every element is 4-byte aligned (3.6.2.4).
+    TempDir dir;
+    std::vector<unsigned char> bytes;
+    append(bytes, std::vector<std::int16_t>{0, 0, 0, 0, 200, 0, 0, 0, 0, 200, 0, 0});   // 3 x (x, y, z, pad)
+    append(bytes, std::vector<std::int8_t>{0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0});  // 3 x (+z, pad)
+    append(bytes, std::vector<std::uint16_t>{0, 0, 3, 0, 0, 5});
+    auto gltf = [&](const std::string& extensions) {
+        std::ostringstream s;
+        s << R"({"asset":{"version":"2.0"},)" << extensions << R"("nodes":[{"mesh":0,"scale":[0.01,0.01,0.01]}],)"
+          << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2}}]}],)"
+          << R"("accessors":[{"bufferView":0,"componentType":5122,"count":3,"type":"VEC3"},)"
+          << R"({"bufferView":1,"componentType":5120,"normalized":true,"count":3,"type":"VEC3"},)"
+          << R"({"bufferView":2,"componentType":5123,"count":3,"type":"VEC2"}],)"
+          << R"("bufferViews":[{"buffer":0,"byteLength":24,"byteStride":8},)"
+          << R"({"buffer":0,"byteOffset":24,"byteLength":12,"byteStride":4},)"
+          << R"({"buffer":0,"byteOffset":36,"byteLength":12}],)"
+          << R"("buffers":[{"byteLength":)" << bytes.size() << R"(,"uri":")" << data_uri(bytes) << R"("}]})";
+        return s.str();
+    };
+    write_text(dir.file("q.gltf"),
+               gltf(R"("extensionsUsed":["KHR_mesh_quantization"],"extensionsRequired":["KHR_mesh_quantization"],)"));
+    std::string warnings;
+    const SceneAsset a = load_gltf(dir.file("q.gltf"), &warnings);
+    EXPECT_EQ(warnings, "");   // a supported extension: no "does not implement" line
+    const Primitive& p = a.meshes[0].primitives[0];
+    EXPECT_EQ(p.positions, (std::vector<glm::vec3>{{0, 0, 0}, {200, 0, 0}, {0, 200, 0}}));
+    EXPECT_EQ(p.normals, (std::vector<glm::vec3>(3, {0, 0, 1})));
+    EXPECT_EQ(p.uvs, (std::vector<glm::vec2>{{0, 0}, {3, 0}, {0, 5}}));
+    const Scene scene = flatten(a, {});
+    EXPECT_EQ(scene.positions[1], glm::vec3(2, 0, 0));
+    write_text(dir.file("plain.gltf"), gltf(""));   // the same types without the extension: not glTF 2.0
+    expect_one_line_scene_error(dir.file("plain.gltf"), "POSITION (accessor 0): unsupported component type");
+}
+
 TEST(GltfLoad, InterleavedStrideAndByteIndicesAndPointsSkipped) {
     TempDir dir;
     // Interleaved position + normal (byteStride 24), u8 indices, plus a POINTS primitive that must be skipped.

@@ -51,24 +51,31 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::s
         auto it = p.attributes.find(key);
         return it == p.attributes.end() ? -1 : it->second;
     };
+    // KHR_mesh_quantization: positions and texture coordinates of any integer type, normals and tangents of
+    // normalized ones (its table of types; a node's transform usually scales them back).
+    const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(),
+                                     "KHR_mesh_quantization") != model.extensionsUsed.end();
+    const Integers any = quantized ? Integers::Any : Integers::None;
+    const Integers signed_normalized = quantized ? Integers::Normalized : Integers::None;
     const int position = attribute("POSITION");
     if (position < 0) invalid(name + ": no POSITION attribute");
-    for (const glm::vec4& v : read_vectors(model, budget(position, name), 3, false, name + " POSITION"))
+    for (const glm::vec4& v : read_vectors(model, budget(position, name), 3, any, name + " POSITION"))
         out.positions.push_back(glm::vec3(v));
     const std::size_t nv = out.positions.size();
 
     if (const int normal = attribute("NORMAL"); normal >= 0) {
-        for (const glm::vec4& v : read_vectors(model, budget(normal, name), 3, false, name + " NORMAL"))
+        for (const glm::vec4& v : read_vectors(model, budget(normal, name), 3, signed_normalized, name + " NORMAL"))
             out.normals.push_back(glm::vec3(v));
         if (out.normals.size() != nv) invalid(name + ": NORMAL and POSITION counts differ");
     }
     if (const int uv = attribute("TEXCOORD_0"); uv >= 0) {
-        for (const glm::vec4& v : read_vectors(model, budget(uv, name), 2, true, name + " TEXCOORD_0"))
+        const Integers uv_integers = quantized ? Integers::Any : Integers::Normalized;
+        for (const glm::vec4& v : read_vectors(model, budget(uv, name), 2, uv_integers, name + " TEXCOORD_0"))
             out.uvs.push_back(glm::vec2(v));
         if (out.uvs.size() != nv) invalid(name + ": TEXCOORD_0 and POSITION counts differ");
     }
     if (const int tangent = attribute("TANGENT"); tangent >= 0) {
-        out.tangents = read_vectors(model, budget(tangent, name), 4, false, name + " TANGENT");
+        out.tangents = read_vectors(model, budget(tangent, name), 4, signed_normalized, name + " TANGENT");
         if (out.tangents.size() != nv) invalid(name + ": TANGENT and POSITION counts differ");
     }
     if (p.indices >= 0) {
@@ -239,13 +246,14 @@ Animation Loader::animation(const tinygltf::Animation& a, std::size_t index, con
         else if (s.interpolation == "LINEAR" || s.interpolation.empty()) c.interpolation = Interpolation::Linear;
         else invalid(name + ": unknown interpolation '" + s.interpolation + "'");
 
-        for (const glm::vec4& t : read_vectors(model, budget(s.input, name), 1, false, name + " input"))
+        for (const glm::vec4& t : read_vectors(model, budget(s.input, name), 1, Integers::None, name + " input"))
             c.times.push_back(t.x);
         for (std::size_t k = 0; k < c.times.size(); ++k)
             if (!std::isfinite(c.times[k]) || (k > 0 && c.times[k] < c.times[k - 1]))
                 invalid(name + ": key times must be finite and increasing");
         const int comps = c.path == AnimationPath::Rotation ? 4 : 3;
-        c.values = read_vectors(model, budget(s.output, name), comps, c.path == AnimationPath::Rotation,
+        c.values = read_vectors(model, budget(s.output, name), comps,
+                                c.path == AnimationPath::Rotation ? Integers::Normalized : Integers::None,
                                 name + " output");
         for (const glm::vec4& v : c.values)
             if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w))

@@ -28,9 +28,13 @@ std::vector<double> numbers(const tinygltf::Value* object, const std::string& ke
 // A number for a message: short, never 309 digits.
 std::string describe(double v);
 
-// Accessors (gltf_read.cpp): float (or, when allowed, normalized integer) elements with the given number of
-// components, as vec4s; and triangle indices.
-std::vector<glm::vec4> read_vectors(const tinygltf::Model& model, int index, int want_components, bool allow_normalized,
+// Which integer component types an accessor may have besides FLOAT: none, normalized ones (glTF 2.0, 3.7.2.1:
+// texture coordinates; 3.11: rotations), or any but UNSIGNED_INT, normalized or not (KHR_mesh_quantization).
+enum class Integers { None, Normalized, Any };
+
+// Accessors (gltf_read.cpp): float (or, as allowed, integer) elements with the given number of components, as vec4s
+// (normalized integers as [0, 1] or [-1, 1], others as their value); and triangle indices.
+std::vector<glm::vec4> read_vectors(const tinygltf::Model& model, int index, int want_components, Integers integers,
                                     const std::string& what);
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index, const std::string& what);
 

@@ -127,23 +127,29 @@ AccessorView view_accessor(const tinygltf::Model& model, int index, const std::s
     return v;
 }
 
-// Component j of element i as a float; normalized integers map to [0, 1] or [-1, 1] (glTF 2.0, 3.11).
+// Component j of element i as a float; normalized integers map to [0, 1] or [-1, 1] (glTF 2.0, 3.11), others
+// (KHR_mesh_quantization) keep their value.
 float read_component(const AccessorView& v, std::size_t i, int j) {
     if (!v.data) return 0.0f;
     const unsigned char* p = v.data + i * v.stride + std::size_t(j) * std::size_t(component_size(v.component_type));
+    const bool n = v.normalized;
     switch (v.component_type) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(*p) / 255.0f;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); return float(s) / 65535.0f; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return n ? float(*p) / 255.0f : float(*p);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t s;
+        std::memcpy(&s, p, 2);
+        return n ? float(s) / 65535.0f : float(s);
+    }
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
         std::int8_t b;
         std::memcpy(&b, p, 1);
-        return std::max(float(b) / 127.0f, -1.0f);
+        return n ? std::max(float(b) / 127.0f, -1.0f) : float(b);
     }
     case TINYGLTF_COMPONENT_TYPE_SHORT: {
         std::int16_t s;
         std::memcpy(&s, p, 2);
-        return std::max(float(s) / 32767.0f, -1.0f);
+        return n ? std::max(float(s) / 32767.0f, -1.0f) : float(s);
     }
     default: return 0.0f;
     }
@@ -196,16 +202,17 @@ void for_each_substitution(const tinygltf::Model& model, int index, const std::s
 
 }  // namespace
 
-// Reads float (or, when allowed, normalized integer) elements with the given number of components, as vec4s.
-std::vector<glm::vec4> read_vectors(const tinygltf::Model& model, int index, int want_components, bool allow_normalized,
+std::vector<glm::vec4> read_vectors(const tinygltf::Model& model, int index, int want_components, Integers integers,
                                     const std::string& what) {
     const AccessorView v = view_accessor(model, index, what);
     if (v.components != want_components)
         invalid(what + " (accessor " + std::to_string(index) + "): expected " + std::to_string(want_components) +
                 " components");
     const bool is_float = v.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT;
-    const bool is_normalized = v.normalized && v.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    if (!is_float && !(allow_normalized && is_normalized))
+    const bool is_integer = !is_float && v.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    const bool allowed = is_float || (is_integer && integers == Integers::Any) ||
+                         (is_integer && v.normalized && integers == Integers::Normalized);
+    if (!allowed)
         invalid(what + " (accessor " + std::to_string(index) + "): unsupported component type");
     std::vector<glm::vec4> out(v.count, glm::vec4(0.0f));
     for (std::size_t i = 0; i < v.count; ++i)

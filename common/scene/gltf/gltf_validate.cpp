@@ -48,7 +48,7 @@ std::string_view glb_json_chunk(const std::vector<unsigned char>& glb) {
 const std::vector<std::string>& supported_extensions() {
     static const std::vector<std::string> names = {
         "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
-        "KHR_materials_specular", "KHR_materials_volume", "KHR_texture_transform"};
+        "KHR_materials_specular", "KHR_materials_volume", "KHR_mesh_quantization", "KHR_texture_transform"};
     return names;
 }
 
