@@ -54,12 +54,17 @@ constexpr double kMinSceneExtent = 1e-10, kMaxSceneExtent = 1e10;
 std::string working_range_problem(const Bounds& bounds);
 
 // An 8-bit texture exactly as stored in the file: RGBA, sRGB-encoded for base colour. Sampling converts to linear.
+// glTF sampler wrapS / wrapT (glTF 2.0, 3.8.4.3): what a texture coordinate outside [0, 1] reads.
+enum class Wrap : int { Repeat = 0, ClampToEdge = 1, MirroredRepeat = 2 };
+
 struct Texture {
     std::string name;
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> rgba8;   // width * height * 4 bytes, row 0 = top of the image (v = 0)
     bool nearest = false;              // glTF sampler magFilter NEAREST; else bilinear
+    Wrap wrap_s = Wrap::Repeat;        // along u (the image's x)
+    Wrap wrap_t = Wrap::Repeat;        // along v (the image's y)
 };
 
 // KHR_texture_transform: uv' = offset + R(rotation) S(scale) uv, glTF's T * R * S (the rotation turns uv

@@ -2,6 +2,7 @@
 
 #include "texture_transform.h"
 
+#include <algorithm>
 #include <array>
 
 namespace rt {
@@ -18,10 +19,28 @@ const std::array<float, 256>& srgb_table() {
     return table;
 }
 
+// A texture coordinate folded into [0, 1] by its wrap mode (glTF 2.0, 3.8.4.3): REPEAT keeps its fractional part
+// (first, so huge coordinates do not lose the texel position to float rounding), CLAMP_TO_EDGE clamps it,
+// MIRRORED_REPEAT reflects every other period (c - 2 floor(c / 2) is exact in float, so is 2 - m).
+float fold(float c, Wrap wrap) {
+    if (wrap == Wrap::ClampToEdge) return std::clamp(c, 0.0f, 1.0f);
+    if (wrap == Wrap::MirroredRepeat) {
+        const float m = c - 2.0f * std::floor(0.5f * c);
+        return m <= 1.0f ? m : 2.0f - m;
+    }
+    return c - std::floor(c);
+}
+
+// A texel index on one axis of n texels: REPEAT wraps any integer, negative included; with the other modes the
+// coordinate is folded into [0, 1], so an index is at most one texel past an edge (a bilinear neighbour, or the
+// nearest texel at exactly 1), and that reads the edge texel (clamped, or mirrored about the edge).
+int texel_index(int x, int n, Wrap wrap) {
+    return wrap == Wrap::Repeat ? ((x % n) + n) % n : std::clamp(x, 0, n - 1);
+}
+
 glm::vec4 texture_texel(const Texture& tex, int x, int y, bool srgb) {
-    // REPEAT wrapping for any integer, negative included.
-    x = ((x % tex.width) + tex.width) % tex.width;
-    y = ((y % tex.height) + tex.height) % tex.height;
+    x = texel_index(x, tex.width, tex.wrap_s);
+    y = texel_index(y, tex.height, tex.wrap_t);
     const std::uint8_t* p = &tex.rgba8[(std::size_t(y) * std::size_t(tex.width) + std::size_t(x)) * 4];
     if (!srgb) return glm::vec4(float(p[0]), float(p[1]), float(p[2]), float(p[3])) / 255.0f;
     const auto& lut = srgb_table();
@@ -30,8 +49,7 @@ glm::vec4 texture_texel(const Texture& tex, int x, int y, bool srgb) {
 
 glm::vec4 sample(const Texture& tex, glm::vec2 uv, bool srgb) {
     if (tex.width <= 0 || tex.height <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) return glm::vec4(1.0f);
-    // Keep only the fractional part first so huge UVs do not lose the texel position to float rounding.
-    uv -= glm::floor(uv);
+    uv = glm::vec2(fold(uv.x, tex.wrap_s), fold(uv.y, tex.wrap_t));
     const float fx = uv.x * float(tex.width), fy = uv.y * float(tex.height);
     if (tex.nearest) return texture_texel(tex, int(fx), int(fy), srgb);
     // Bilinear between the four texel centres around (fx, fy).

@@ -106,7 +106,8 @@ inline float linear_to_srgb(float c) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
-// Texture lookup with REPEAT wrapping; nearest or bilinear per the texture. Returns linear RGBA: colour channels
+// Texture lookup with the texture's wrap modes (REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT); nearest or bilinear per the
+// texture. Returns linear RGBA: colour channels
 // sRGB-decoded, or (srgb = false, normal maps) like alpha, byte / 255.
 glm::vec4 sample_texture(const Texture& tex, glm::vec2 uv, bool srgb = true);
 

@@ -207,6 +207,32 @@ TEST(Textures, BilinearBlendsNeighbours) {
     EXPECT_NEAR(sample_texture(t, {0.5f, 0.5f}).x, 0.5f, 1e-6f);   // halfway between the two texel centres
 }
 
+TEST(Textures, ClampToEdgeAndMirroredRepeatFoldCoordinatesAsGltfSamplersSay) {
+    Texture t;   // texel 0 white, texel 1 black
+    t.width = 2;
+    t.height = 1;
+    t.rgba8 = {255, 255, 255, 255, 0, 0, 0, 255};
+    t.nearest = true;
+    t.wrap_s = Wrap::ClampToEdge;
+    EXPECT_EQ(sample_texture(t, {-0.5f, 0.5f}).x, 1.0f);   // left of the image: its left texel
+    EXPECT_EQ(sample_texture(t, {1.5f, 0.5f}).x, 0.0f);    // right of it: its right texel
+    EXPECT_EQ(sample_texture(t, {1.0f, 0.5f}).x, 0.0f);    // exactly 1: the last texel, not the first
+    t.wrap_s = Wrap::MirroredRepeat;
+    EXPECT_EQ(sample_texture(t, {1.25f, 0.5f}).x, 0.0f);   // the second period runs backwards: 0.75
+    EXPECT_EQ(sample_texture(t, {1.75f, 0.5f}).x, 1.0f);   // 0.25
+    EXPECT_EQ(sample_texture(t, {-0.25f, 0.5f}).x, 1.0f);  // 0.25
+    EXPECT_EQ(sample_texture(t, {2.25f, 0.5f}).x, 1.0f);   // the third runs forwards again
+    // Bilinear at the left edge: REPEAT blends in the right texel, the other two read the edge texel alone.
+    t.nearest = false;
+    t.wrap_s = Wrap::Repeat;
+    EXPECT_NEAR(sample_texture(t, {0.0f, 0.5f}).x, 0.5f, 1e-6f);
+    for (Wrap w : {Wrap::ClampToEdge, Wrap::MirroredRepeat}) {
+        t.wrap_s = w;
+        EXPECT_EQ(sample_texture(t, {0.0f, 0.5f}).x, 1.0f) << int(w);
+        EXPECT_EQ(sample_texture(t, {1.0f, 0.5f}).x, 0.0f) << int(w);
+    }
+}
+
 TEST(Textures, MetallicRoughnessIsLinearAndEmissiveIsSrgb) {
     Texture mr;   // green 51 (roughness 0.2), blue 255 (metallic 1), read as linear bytes / 255
     mr.width = mr.height = 1;

@@ -431,17 +431,24 @@ void test_main() {
 
 Scene test_scene(Rng& rng) {
     Scene scene;
-    auto texture = [&](int w, int h, bool nearest) {
+    auto texture = [&](int w, int h, bool nearest, Wrap wrap_s = Wrap::Repeat, Wrap wrap_t = Wrap::Repeat) {
         Texture t;
         t.width = w;
         t.height = h;
         t.nearest = nearest;
+        t.wrap_s = wrap_s;
+        t.wrap_t = wrap_t;
         t.rgba8.resize(std::size_t(w * h * 4));
         for (auto& b : t.rgba8) b = std::uint8_t(rng.integer(0, 255));
         return t;
     };
     scene.textures = {texture(1, 1, false), texture(3, 5, true), texture(7, 4, false), texture(16, 16, false),
-                      texture(5, 3, true)};
+                      texture(5, 3, true),
+                      // Every wrap mode on each axis, bilinear and nearest (glTF samplers' wrapS / wrapT).
+                      texture(6, 5, false, Wrap::ClampToEdge, Wrap::MirroredRepeat),
+                      texture(4, 7, false, Wrap::MirroredRepeat, Wrap::ClampToEdge),
+                      texture(5, 4, true, Wrap::ClampToEdge, Wrap::Repeat), texture(3, 6, true, Wrap::MirroredRepeat,
+                      Wrap::MirroredRepeat), texture(1, 1, false, Wrap::ClampToEdge, Wrap::ClampToEdge)};
     for (int i = 0; i < 50; ++i) {
         for (int k = 0; k < 3; ++k) {
             scene.positions.push_back(rng.vec(-5, 5));
@@ -573,7 +580,7 @@ void test_main() {
     out_vec3(26, rt_camera.position); out_f(29, rt_camera.tan_half_fov); out_vec3(30, rt_background);
     out_u(33, rt_triangle_count); out_u(34, rt_texture_count);
     const TextureInfo ti = rt_texture_info(int(tri % rt_texture_count));
-    out_i(35, ti.width); out_i(36, ti.height); out_i(37, ti.nearest); out_f(38, rt_srgb_lut[tri % 256u]);
+    out_i(35, ti.width); out_i(36, ti.height); out_i(37, ti.sampler); out_f(38, rt_srgb_lut[tri % 256u]);
 }
 )");
     struct Dummy {};
@@ -604,7 +611,7 @@ void test_main() {
                              cam.position.x, cam.position.y, cam.position.z, cam.tan_half_fov, scene.background.x,
                              scene.background.y, scene.background.z, as_word(int(scene.triangle_count())),
                              as_word(int(scene.textures.size())), as_word(t.width), as_word(t.height),
-                             as_word(t.nearest ? 1 : 0), srgb_to_linear(float(tri % 256) / 255.0f)});
+                             as_word((t.nearest ? 1 : 0) | int(t.wrap_s) << 1 | int(t.wrap_t) << 3), srgb_to_linear(float(tri % 256) / 255.0f)});
             ++count;
         }
     expect_floats(expected, h.run(in.words, count, 9, 39, [&] { gpu.bind(); }), ulp_bound(),

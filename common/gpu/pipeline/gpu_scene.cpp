@@ -139,7 +139,8 @@ void GpuScene::upload_textures(const Scene& scene) {
         const std::size_t texels = t.width > 0 && t.height > 0 ? std::size_t(t.width) * std::size_t(t.height) : 0;
         if (t.rgba8.size() < texels * 4)
             throw std::invalid_argument("GpuScene: texture '" + t.name + "' has fewer bytes than width*height*4");
-        info.push_back({t.width, t.height, t.nearest ? 1 : 0, std::uint32_t(word)});
+        const int sampler = (t.nearest ? 1 : 0) | int(t.wrap_s) << 1 | int(t.wrap_t) << 3;
+        info.push_back({t.width, t.height, sampler, std::uint32_t(word)});
         word += texels;
     }
     const std::size_t bytes = lut_bytes + word * 4;

@@ -49,7 +49,8 @@ struct GpuLight {                        // scene.glsl: Light
 static_assert(sizeof(GpuLight) == 64);
 
 struct GpuTextureInfo {                  // scene.glsl: TextureInfo
-    std::int32_t width, height, nearest;
+    std::int32_t width, height;
+    std::int32_t sampler;                // bit 0: nearest; bits 1-2: wrap_s, bits 3-4: wrap_t (rt::Wrap)
     std::uint32_t first;                 // index of texel (0, 0) in the texture words (rt_texture_words)
 };
 static_assert(sizeof(GpuTextureInfo) == 16);

@@ -164,6 +164,8 @@ void expect_same_scene(const Scene& a, const Scene& b) {
         EXPECT_EQ(a.textures[i].height, b.textures[i].height);
         EXPECT_EQ(a.textures[i].rgba8, b.textures[i].rgba8);
         EXPECT_EQ(a.textures[i].nearest, b.textures[i].nearest);
+        EXPECT_EQ(a.textures[i].wrap_s, b.textures[i].wrap_s);
+        EXPECT_EQ(a.textures[i].wrap_t, b.textures[i].wrap_t);
     }
 }
 
@@ -199,6 +201,35 @@ TEST(GltfRoundTrip, EveryBuiltinKeepsTrianglesMaterialsLightsCameraAsGlb) {
         SCOPED_TRACE(name);
         expect_round_trip(make_builtin_scene(name), dir.file("scene.GLB"));
     }
+}
+
+TEST(GltfRoundTrip, SamplerWrapModesAreReadAndWritten) {
+    // Every pair of glTF wrap modes (wrapS, wrapT) survives a save and a load; a sampler without them is REPEAT,
+    // and a number that is not a wrap mode is REPEAT with a warning.
+    TempDir dir;
+    SceneAsset a = make_builtin_scene("whitted");
+    ASSERT_EQ(a.textures.size(), 1u);
+    EXPECT_EQ(a.textures[0].wrap_s, Wrap::Repeat);
+    const Wrap modes[] = {Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat};
+    for (Wrap s : modes)
+        for (Wrap t : modes) {
+            a.textures[0].wrap_s = s;
+            a.textures[0].wrap_t = t;
+            save_gltf(a, dir.file("w.gltf"));
+            const SceneAsset b = load_gltf(dir.file("w.gltf"));
+            EXPECT_EQ(b.textures[0].wrap_s, s);
+            EXPECT_EQ(b.textures[0].wrap_t, t);
+        }
+    std::ifstream in(dir.file("w.gltf"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = text.find("33648", text.find("\"wrapT\""));   // the last pair: MIRRORED_REPEAT on both
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 5, "12345");
+    write_text(dir.file("odd.gltf"), text);
+    std::string warnings;
+    const SceneAsset odd = load_gltf(dir.file("odd.gltf"), &warnings);
+    EXPECT_EQ(odd.textures[0].wrap_t, Wrap::Repeat);
+    EXPECT_NE(warnings.find("wrapT 12345 is not a glTF wrap mode; REPEAT"), std::string::npos) << warnings;
 }
 
 TEST(GltfRoundTrip, WhittedKeepsTexturePixelsAndNearestSampler) {

@@ -123,8 +123,20 @@ Texture Loader::texture(const tinygltf::Texture& t, std::size_t index) {
     out.name = t.name;
     const std::string name = "texture " + std::to_string(index);
     check_index(t.sampler, model.samplers.size(), name + ": sampler");
-    if (t.sampler >= 0)
-        out.nearest = model.samplers[std::size_t(t.sampler)].magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    if (t.sampler >= 0) {
+        const tinygltf::Sampler& s = model.samplers[std::size_t(t.sampler)];
+        out.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        auto wrap = [&](int mode, const char* axis) {
+            if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return Wrap::ClampToEdge;
+            if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return Wrap::MirroredRepeat;
+            if (mode != TINYGLTF_TEXTURE_WRAP_REPEAT)
+                warn(name + ": sampler " + std::to_string(t.sampler) + " " + axis + " " + std::to_string(mode) +
+                     " is not a glTF wrap mode; REPEAT");
+            return Wrap::Repeat;
+        };
+        out.wrap_s = wrap(s.wrapS, "wrapS");
+        out.wrap_t = wrap(s.wrapT, "wrapT");
+    }
     check_index(t.source, model.images.size(), name + ": image");
     if (t.source < 0) {
         warn(name + ": no image source; using white");

@@ -192,6 +192,13 @@ struct Writer {
         tinygltf::Sampler s;
         s.magFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
         s.minFilter = t.nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
+        auto wrap = [](Wrap w) {
+            return w == Wrap::ClampToEdge      ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
+                   : w == Wrap::MirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT
+                                               : TINYGLTF_TEXTURE_WRAP_REPEAT;
+        };
+        s.wrapS = wrap(t.wrap_s);
+        s.wrapT = wrap(t.wrap_t);
         model.samplers.push_back(s);
         tinygltf::Texture tex;
         tex.name = t.name;

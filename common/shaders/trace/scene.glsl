@@ -40,7 +40,7 @@ struct Light {                       // 64 bytes, std430 (GpuLight)
 };
 
 struct TextureInfo {                 // 16 bytes (GpuTextureInfo): texel (x, y) is word first + y * width + x
-    int width; int height; int nearest; uint first;
+    int width; int height; int sampler; uint first;   // sampler: bit 0 nearest, bits 1-2 wrap_s, bits 3-4 wrap_t
 };
 
 // Triangle i uses entries 3i, 3i+1, 3i+2. RT_SCENE_MATERIALS_ONLY (opacity.glsl in a traversal's pass, which must

@@ -83,15 +83,38 @@ float fresnel(int mode, float cos_i, float eta) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Textures (REPEAT; nearest or bilinear per texture; sRGB decoded through the same table as the CPU).
+// Textures (wrap modes REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT per axis; nearest or bilinear per texture; sRGB decoded
+// through the same table as the CPU; shading.cpp's fold, texel_index and sample).
 
-int rt_wrap(int x, int n) { return x >= 0 ? x % n : (n - 1) - ((-(x + 1)) % n); }   // ((x % n) + n) % n
+#define RT_WRAP_REPEAT 0
+#define RT_WRAP_CLAMP_TO_EDGE 1
+#define RT_WRAP_MIRRORED_REPEAT 2
+int rt_wrap_s(TextureInfo info) { return (info.sampler >> 1) & 3; }
+int rt_wrap_t(TextureInfo info) { return (info.sampler >> 3) & 3; }
+
+// A texture coordinate folded into [0, 1] by its wrap mode (c - 2 floor(c / 2) and 2 - m are exact in float).
+float rt_fold(float c, int wrap) {
+    if (wrap == RT_WRAP_CLAMP_TO_EDGE) return clamp(c, 0.0, 1.0);
+    if (wrap == RT_WRAP_MIRRORED_REPEAT) {
+        precise float m = c - 2.0 * floor(0.5 * c);
+        return m <= 1.0 ? m : 2.0 - m;
+    }
+    precise float f = c - floor(c);
+    return f;
+}
+
+// A texel index on one axis of n texels: REPEAT wraps any integer, negative included (((x % n) + n) % n); the other
+// modes fold the coordinate into [0, 1] first, so an index is at most one past an edge and reads the edge texel.
+int rt_texel_index(int x, int n, int wrap) {
+    if (wrap != RT_WRAP_REPEAT) return clamp(x, 0, n - 1);
+    return x >= 0 ? x % n : (n - 1) - ((-(x + 1)) % n);
+}
 
 // srgb: decode the colour channels from sRGB (colour textures), else every channel byte / 255 like alpha (data:
 // normal maps, metallicRoughnessTexture, transmissionTexture).
 vec4 rt_texel(TextureInfo info, int x, int y, bool srgb) {
-    x = rt_wrap(x, info.width);
-    y = rt_wrap(y, info.height);
+    x = rt_texel_index(x, info.width, rt_wrap_s(info));
+    y = rt_texel_index(y, info.height, rt_wrap_t(info));
     const uvec4 p = rt_texel_bytes(info, x, y);
     if (!srgb) return vec4(rt_alpha_lut[p.r], rt_alpha_lut[p.g], rt_alpha_lut[p.b], rt_alpha_lut[p.a]);
     return vec4(rt_srgb_lut[p.r], rt_srgb_lut[p.g], rt_srgb_lut[p.b], rt_alpha_lut[p.a]);
@@ -100,9 +123,9 @@ vec4 rt_texel(TextureInfo info, int x, int y, bool srgb) {
 vec4 sample_texture_decoded(int texture_index, vec2 uv, bool srgb) {
     const TextureInfo info = rt_texture_info(texture_index);
     if (info.width <= 0 || info.height <= 0 || !rt_isfinite(uv.x) || !rt_isfinite(uv.y)) return vec4(1.0);
-    precise vec2 f = uv - floor(uv);
+    precise vec2 f = vec2(rt_fold(uv.x, rt_wrap_s(info)), rt_fold(uv.y, rt_wrap_t(info)));
     precise float fx = f.x * float(info.width), fy = f.y * float(info.height);
-    if (info.nearest != 0) return rt_texel(info, int(fx), int(fy), srgb);
+    if ((info.sampler & 1) != 0) return rt_texel(info, int(fx), int(fy), srgb);
     precise float sx = fx - 0.5, sy = fy - 0.5;
     const float x0f = floor(sx), y0f = floor(sy);
     precise float ax = sx - x0f, ay = sy - y0f;
