@@ -630,6 +630,48 @@ TEST(GltfLoad, QuantizedAttributesAreReadWithKhrMeshQuantizationAndRefusedWithou
     expect_one_line_scene_error(dir.file("plain.gltf"), "POSITION (accessor 0): unsupported component type");
 }
 
+TEST(GltfLoad, MorphTargetsApplyAtTheMeshDefaultWeightsAndVertexColoursAreWarnedOfOnce) {
+    // A triangle with one target moving every vertex by (0, 0, 2) and tilting its normals, at weight 0.5 (glTF 2.0,
+    // 3.7.2.2); weight 0 leaves the base. A node's own weights are warned of (not read). Two primitives carry
+    // COLOR_0, which is warned of once.
+    TempDir dir;
+    std::vector<unsigned char> bytes;
+    append(bytes, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});   // 0: positions
+    append(bytes, std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1});   // 36: normals
+    append(bytes, std::vector<float>{0, 0, 2, 0, 0, 2, 0, 0, 2});   // 72: target positions
+    append(bytes, std::vector<float>{2, 0, 0, 2, 0, 0, 2, 0, 0});   // 108: target normals
+    auto gltf = [&](const std::string& weights) {
+        std::ostringstream s;
+        s << R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0},{"mesh":0,"weights":[0.25]}],)"
+          << R"("meshes":[{"weights":[)" << weights << R"(],)"
+          << R"("primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"COLOR_0":1},"targets":[{"POSITION":2,)"
+          << R"("NORMAL":3}]},{"attributes":{"POSITION":0,"COLOR_0":1},"targets":[{"POSITION":2}]}]}],)"
+          << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
+          << R"({"bufferView":0,"byteOffset":36,"componentType":5126,"count":3,"type":"VEC3"},)"
+          << R"({"bufferView":0,"byteOffset":72,"componentType":5126,"count":3,"type":"VEC3"},)"
+          << R"({"bufferView":0,"byteOffset":108,"componentType":5126,"count":3,"type":"VEC3"}],)"
+          << R"("bufferViews":[{"buffer":0,"byteLength":144}],)"
+          << R"("buffers":[{"byteLength":)" << bytes.size() << R"(,"uri":")" << data_uri(bytes) << R"("}]})";
+        return s.str();
+    };
+    write_text(dir.file("half.gltf"), gltf("0.5"));
+    std::string warnings;
+    const SceneAsset a = load_gltf(dir.file("half.gltf"), &warnings);
+    EXPECT_EQ(a.meshes[0].primitives[0].positions, (std::vector<glm::vec3>{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}));
+    EXPECT_EQ(a.meshes[0].primitives[0].normals, (std::vector<glm::vec3>(3, {1, 0, 1})));
+    EXPECT_EQ(a.meshes[0].primitives[1].positions, a.meshes[0].primitives[0].positions);
+    const std::string colours = "vertex colours (COLOR_0) are not read";
+    ASSERT_NE(warnings.find(colours), std::string::npos) << warnings;
+    EXPECT_EQ(warnings.find(colours, warnings.find(colours) + 1), std::string::npos) << warnings;   // once
+    EXPECT_NE(warnings.find("node 1: its own morph target weights are not read"), std::string::npos) << warnings;
+    EXPECT_EQ(flatten(a, {}).normals[0], glm::normalize(glm::vec3(1, 0, 1)));
+    write_text(dir.file("zero.gltf"), gltf("0"));
+    EXPECT_EQ(load_gltf(dir.file("zero.gltf")).meshes[0].primitives[0].positions,
+              (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+    write_text(dir.file("nan.gltf"), gltf("1e39"));   // a weight must fit a float, like every number read
+    expect_one_line_scene_error(dir.file("nan.gltf"), "weight 0 is 1e+39, which does not fit a float");
+}
+
 TEST(GltfLoad, InterleavedStrideAndByteIndicesAndPointsSkipped) {
     TempDir dir;
     // Interleaved position + normal (byteStride 24), u8 indices, plus a POINTS primitive that must be skipped.

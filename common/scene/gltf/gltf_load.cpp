@@ -43,7 +43,8 @@ std::vector<std::uint32_t> triangle_list(const std::vector<std::uint32_t>& v, in
 
 }  // namespace
 
-Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::string& name) {
+Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::vector<double>& weights,
+                            const std::string& name) {
     Primitive out;
     check_index(p.material, model.materials.size(), name + ": material");
     out.material = p.material;
@@ -77,6 +78,31 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::s
     if (const int tangent = attribute("TANGENT"); tangent >= 0) {
         out.tangents = read_vectors(model, budget(tangent, name), 4, signed_normalized, name + " TANGENT");
         if (out.tangents.size() != nv) invalid(name + ": TANGENT and POSITION counts differ");
+    }
+    // Morph targets at the mesh's default weights (glTF 2.0, 3.7.2.2): each target's POSITION, NORMAL and TANGENT
+    // displacements, times its weight, add to the base (flatten normalizes the normals). A weight of 0, the default,
+    // adds nothing; animated weights are not read (Loader::animation warns).
+    for (std::size_t k = 0; k < p.targets.size(); ++k) {
+        const std::string target = name + " target " + std::to_string(k);
+        const float w = k < weights.size() ? value(weights[k], name + " weight " + std::to_string(k)) : 0.0f;
+        if (w == 0.0f) continue;
+        auto displace = [&](const char* key, int components, auto& base) {
+            auto it = p.targets[k].find(key);
+            if (it == p.targets[k].end() || base.empty()) return;
+            const std::vector<glm::vec4> d = read_vectors(model, budget(it->second, target), components,
+                                                          quantized ? Integers::Normalized : Integers::None,
+                                                          target + " " + key);
+            if (d.size() != nv) invalid(target + ": " + key + " and POSITION counts differ");
+            for (std::size_t i = 0; i < nv; ++i)
+                for (int c = 0; c < 3; ++c) base[i][c] += w * d[i][c];
+        };
+        displace("POSITION", 3, out.positions);
+        displace("NORMAL", 3, out.normals);
+        displace("TANGENT", 3, out.tangents);   // xyz only: a target's tangents carry no handedness
+    }
+    if (attribute("COLOR_0") >= 0 && !warned_colors) {
+        warn(name + ": vertex colours (COLOR_0) are not read; base colours are the materials' alone");
+        warned_colors = true;
     }
     if (p.indices >= 0) {
         out.indices = read_indices(model, budget(p.indices, name), name + " indices");
@@ -115,7 +141,7 @@ Mesh Loader::mesh(const tinygltf::Mesh& m, std::size_t index) {
             warn(name + ": mode " + std::to_string(mode) + " is points or lines, not triangles; skipped");
             continue;
         }
-        out.primitives.push_back(primitive(p, mode, name));
+        out.primitives.push_back(primitive(p, mode, m.weights, name));
     }
     return out;
 }
@@ -199,6 +225,8 @@ Node Loader::node(const tinygltf::Node& n, std::size_t index) {
     }
     check_index(n.mesh, model.meshes.size(), name + ": mesh");
     check_index(n.camera, model.cameras.size(), name + ": camera");
+    if (n.mesh >= 0 && !n.weights.empty() && n.weights != model.meshes[std::size_t(n.mesh)].weights)
+        warn(name + ": its own morph target weights are not read; its mesh is shaped by the mesh's weights");
     out.mesh = n.mesh;
     out.camera = n.camera;
     if (const tinygltf::Value* lights = extension(n.extensions, "KHR_lights_punctual")) {

@@ -103,7 +103,10 @@ struct Loader {
 
     // Each reads one object of the file, checked; `index` is its place in the file and `name` how messages call it.
     // Geometry, cameras, lights, nodes, animations and the scene are in gltf_load.cpp.
-    Primitive primitive(const tinygltf::Primitive& p, int mode, const std::string& name);   // TRIANGLES, strip or fan
+    // One TRIANGLES, strip or fan primitive, its morph targets applied at the mesh's default weights.
+    Primitive primitive(const tinygltf::Primitive& p, int mode, const std::vector<double>& weights,
+                        const std::string& name);
+    bool warned_colors = false;   // COLOR_0 is not read: said once a file
 
     Mesh mesh(const tinygltf::Mesh& m, std::size_t index);
 
