@@ -90,6 +90,7 @@ Effects analyze_effects(const Scene& scene) {
         if (id < used.size()) used[id] = true;
     Effects e;
     e.shadows = !scene.lights.empty() && scene.triangle_count() > 0;
+    e.textures = !scene.colors.empty();   // vertex colours vary the base colour as a texture does
     for (std::size_t i = 0; i < used.size(); ++i) {
         if (!used[i]) continue;
         const Material& m = scene.materials[i];

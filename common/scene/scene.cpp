@@ -251,6 +251,12 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     scene.material_ids.reserve(triangles);
     const bool want_tangents = frame_uses_normal_maps(asset, nodes, order, scene.materials, scene.textures.size());
     if (want_tangents) scene.tangents.reserve(3 * triangles);
+    bool want_colors = false;   // a primitive of the frame has COLOR_0
+    for (const WorldNode& wn : order)
+        if (const int mesh = nodes[std::size_t(wn.index)].mesh; mesh >= 0 && std::size_t(mesh) < asset.meshes.size())
+            for (const Primitive& prim : asset.meshes[std::size_t(mesh)].primitives)
+                want_colors = want_colors || (!prim.colors.empty() && prim.colors.size() == prim.positions.size());
+    if (want_colors) scene.colors.reserve(3 * triangles);
 
     const Camera* chosen_camera = nullptr;
     glm::mat4 camera_world(1.0f);
@@ -283,6 +289,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
             const std::size_t nv = prim.positions.size();
             const bool has_normals = prim.normals.size() == nv;
             const bool has_uvs = prim.uvs.size() == nv;
+            const bool has_colors = prim.colors.size() == nv;
             const std::size_t ni = prim.indices.empty() ? nv : prim.indices.size();
 
             std::uint32_t material;
@@ -329,6 +336,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
                     scene.normals.push_back(has_normals ? safe_normalize(normal_matrix * prim.normals[idx[k]], face)
                                                         : face);
                     scene.uvs.push_back(has_uvs ? prim.uvs[idx[k]] : glm::vec2(0.0f));
+                    if (want_colors) scene.colors.push_back(has_colors ? prim.colors[idx[k]] : glm::vec4(1.0f));
                     if (want_tangents)
                         scene.tangents.push_back(tangents.empty() ? glm::vec4(0.0f)
                                                                   : world_tangent(glm::mat3(world), mirrors,

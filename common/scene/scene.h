@@ -159,6 +159,7 @@ struct Primitive {
     std::vector<glm::vec3> normals;     // empty = computed (flat, per face) when flattened
     std::vector<glm::vec2> uvs;         // empty = no texture coordinates
     std::vector<glm::vec4> tangents;    // glTF TANGENT (xyz, w = handedness); empty = generated when needed
+    std::vector<glm::vec4> colors;      // glTF COLOR_0 (linear RGBA, multiplies the base colour); empty = white
     std::vector<std::uint32_t> indices; // empty = non-indexed (every three positions form a triangle)
     int material = -1;                  // -1 = the glTF default material
 };
@@ -229,6 +230,10 @@ struct Scene {
     // Tangents (xyz unit, w = +-1 handedness), one per vertex like normals, only when a used material has a normal
     // map (docs/shading.md, "Normal maps"); empty otherwise.
     std::vector<glm::vec4> tangents;
+    // Vertex colours (glTF COLOR_0, linear RGBA), one per vertex like normals, only when a mesh of the frame has them
+    // (white for the vertices of those that do not); empty otherwise. They multiply the base colour and its alpha
+    // (docs/shading.md, "Vertex colours").
+    std::vector<glm::vec4> colors;
     std::vector<std::uint32_t> material_ids;   // one per triangle
     std::vector<Material> materials;    // never empty: a default material is appended when needed
     std::vector<Texture> textures;

@@ -30,9 +30,17 @@ inline float alpha_test_cutoff(const Material& m) {
     }
 }
 
+// The vertex colour (COLOR_0) at barycentrics (u, v) of the triangle whose first vertex is i, as c0 + u (c1 - c0)
+// + v (c2 - c0): a triangle of one colour gets exactly that colour (w c0 + u c0 + v c0 need not be c0 in float, as
+// w + u + v need not be 1), so a white one leaves the base colour bit for bit. The GLSL twin: rt_vertex_color.
+inline glm::vec4 vertex_color(const Scene& scene, std::size_t i, float u, float v) {
+    const glm::vec4 c0 = scene.colors[i];
+    return c0 + u * (scene.colors[i + 1] - c0) + v * (scene.colors[i + 2] - c0);
+}
+
 // Opacity at barycentrics (u, v) of a triangle: the base colour factor's alpha times the base colour texture's alpha
 // at the hit's texture coordinates, interpolated exactly as surface_point (whitted.h) does and sampled as the colour
-// is (sample_texture), so the test and the shading see the same texel.
+// is (sample_texture), so the test and the shading see the same texel; times the vertex colour's alpha (COLOR_0).
 template <class T>
 float surface_opacity(const Scene& scene, std::size_t triangle, T u, T v) {
     const Material& m = scene.materials[scene.material_ids[triangle]];
@@ -44,6 +52,7 @@ float surface_opacity(const Scene& scene, std::size_t triangle, T u, T v) {
         const glm::vec2 uv = wf * scene.uvs[i] + uf * scene.uvs[i + 1] + vf * scene.uvs[i + 2];
         alpha *= sample_texture(scene.textures[std::size_t(m.base_color_texture)], transform_uv(m.base_color_transform, uv)).a;
     }
+    if (!scene.colors.empty()) alpha *= vertex_color(scene, 3 * triangle, float(u), float(v)).a;   // COLOR_0's
     return alpha;
 }
 

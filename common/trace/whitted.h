@@ -75,6 +75,7 @@ struct SurfacePoint {
     Vec3<T> geometric_normal;  // unit, facing the incoming ray
     glm::vec3 shading_normal;  // unit, on the same side as geometric_normal
     glm::vec2 uv;
+    glm::vec4 color{1.0f};     // the vertex colour (COLOR_0), interpolated like uv; white when the scene has none
     bool front_face;           // the ray arrived from the side the triangle's winding calls outside
     std::uint32_t material;
 };
@@ -100,6 +101,7 @@ SurfacePoint<T> surface_point(const Scene& scene, const Ray<T>& ray, const Hit<T
     // the geometric side so lighting and reflection stay on the visible side of the surface.
     s.shading_normal = glm::dot(ns, ngf) < 0.0f ? -ns : ns;
     s.uv = wf * scene.uvs[i] + uf * scene.uvs[i + 1] + vf * scene.uvs[i + 2];
+    if (!scene.colors.empty()) s.color = vertex_color(scene, i, uf, vf);
     s.material = scene.material_ids[std::size_t(hit.triangle)];
     return s;
 }
@@ -193,7 +195,10 @@ private:
                                               sp.shading_normal, material);
         }
         SurfaceTexels texels;
-        if (settings_.effects.textures) texels = sample_surface_textures(material, scene_.textures, sp.uv);
+        if (settings_.effects.textures) {   // the textures and COLOR_0 (docs/shading.md, "Vertex colours")
+            texels = sample_surface_textures(material, scene_.textures, sp.uv);
+            texels.base *= sp.color;
+        }
         SurfaceCoefficients s = surface_coefficients(material, texels);
         if (blend_surface) s.transmission = 0.0f;   // its see-through part is the transparency ray
         const glm::vec3 d = glm::vec3(ray.direction);

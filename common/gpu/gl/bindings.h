@@ -20,7 +20,7 @@ namespace rt::gpu {
 // Scene (std430; layouts in common/shaders/trace/scene.glsl and gpu_scene.h).
 constexpr unsigned kBindingPositions = 0;     // vec4[3 * triangles] (w unused)
 constexpr unsigned kBindingNormals = 1;       // vec4[3 * triangles] (w unused)
-constexpr unsigned kBindingUvs = 2;           // vec2[3 * triangles]
+constexpr unsigned kBindingUvs = 2;           // vec2[3 * triangles], then 2 a vertex of colours (COLOR_0)
 constexpr unsigned kBindingMaterialIds = 3;   // uint[triangles]
 constexpr unsigned kBindingMaterials = 4;     // Material[]
 constexpr unsigned kBindingLights = 5;        // Light[]

@@ -8,6 +8,7 @@
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/opacity.h"
+#include "common/trace/whitted.h"
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/testing/glsl_test_harness.h"
@@ -149,6 +150,86 @@ TEST(OpacityGlsl, SceneWithoutCutoutsCompilesNothingForThemAndEveryHitPassingGiv
         EXPECT_EQ(a.hits[i].triangle, b.hits[i].triangle) << i;
         EXPECT_EQ(a.hits[i].t, b.hits[i].t) << i;
     }
+}
+
+// Vertex colours (COLOR_0): random RGBA per vertex of a scene.
+Scene with_vertex_colors(Scene scene, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    scene.colors.resize(scene.positions.size());
+    for (glm::vec4& c : scene.colors) c = {unit(rng), unit(rng), unit(rng), unit(rng)};
+    return scene;
+}
+
+// rt_vertex_color and the opacity with a vertex colour's alpha against surface_point's colour (whitted.h) and
+// surface_opacity (opacity.h), bit for bit, on the cut-out scene with random colours.
+TEST(OpacityGlsl, VertexColourAndItsAlphaInTheCutoutTestAreTheCppTwinsBitForBit) {
+    test_context();
+    GlslTestHarness h("vertex_color_test", R"(
+#include "common/shaders/trace/opacity.glsl"
+void test_main() {
+    out_vec4(0, rt_vertex_color(in_u(0), in_f(1), in_f(2)));
+    out_f(4, surface_opacity(in_u(0), in_f(1), in_f(2)));
+}
+)", {{"ENABLE_CUTOUTS", "1"}, {"RT_VERTEX_COLORS", "1"}});
+    const Scene scene = with_vertex_colors(flatten(make_builtin_scene("cutouts"), {}), 5);
+    GpuScene gpu;
+    gpu.upload(scene);
+    ASSERT_TRUE(gpu.has_vertex_colors());
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    Words in;
+    std::vector<std::uint32_t> expected;
+    std::size_t count = 0;
+    for (std::uint32_t tri = 0; tri < scene.triangle_count(); ++tri)
+        for (int k = 0; k < 500; ++k) {
+            float u = unit(rng), v = unit(rng);
+            if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+            in << tri << u << v;
+            Ray<float> ray;
+            ray.direction = glm::vec3(0, 0, -1);
+            Hit<float> hit;
+            hit.triangle = std::int32_t(tri);
+            hit.u = u;
+            hit.v = v;
+            const glm::vec4 c = surface_point(scene, ray, hit).color;
+            expected.insert(expected.end(), {bits(c.x), bits(c.y), bits(c.z), bits(c.w),
+                                             bits(surface_opacity(scene, tri, u, v))});
+            ++count;
+        }
+    const std::vector<std::uint32_t> got = h.run(in.words, count, 3, 5, [&] { gpu.bind(); });
+    ASSERT_EQ(got.size(), expected.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < got.size(); ++i) differ += got[i] != expected[i] ? 1 : 0;
+    EXPECT_EQ(differ, 0u);
+}
+
+// A scene without vertex colours compiles no code and uploads no bytes for them; white ones change no pixel and no
+// hit (vertex_color gives a one-coloured triangle its colour exactly); random ones change the image.
+TEST(OpacityGlsl, VertexColoursCostNothingWithoutThemAndWhiteOnesChangeNoPixel) {
+    test_context();
+    FlattenOptions options;
+    options.aspect = 64.0f / 48.0f;
+    const Scene plain = flatten(make_builtin_scene("whitted"), options);
+    const Effects effects = analyze_effects(plain);
+    const Frame a = render(plain, effects);
+    EXPECT_EQ(a.defines.count("RT_VERTEX_COLORS"), 0u);
+    GpuScene gpu;
+    gpu.upload(plain);
+    EXPECT_EQ(gpu.uvs().size(), plain.uvs.size() * sizeof(glm::vec2));   // texture coordinates only
+
+    Scene white = plain;
+    white.colors.assign(white.positions.size(), glm::vec4(1.0f));
+    const Frame b = render(white, analyze_effects(white));
+    EXPECT_EQ(b.defines.count("RT_VERTEX_COLORS"), 1u);
+    EXPECT_TRUE(a.image.pixels == b.image.pixels);
+    ASSERT_EQ(a.hits.size(), b.hits.size());
+    for (std::size_t i = 0; i < a.hits.size(); ++i) {
+        EXPECT_EQ(a.hits[i].triangle, b.hits[i].triangle) << i;
+        EXPECT_EQ(a.hits[i].t, b.hits[i].t) << i;
+    }
+    const Frame c = render(with_vertex_colors(plain, 3), analyze_effects(plain));
+    EXPECT_FALSE(a.image.pixels == c.image.pixels);
 }
 
 }  // namespace

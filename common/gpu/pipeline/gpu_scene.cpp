@@ -96,7 +96,15 @@ void GpuScene::upload(const Scene& scene) {
     std::vector<glm::vec4> normals = convert<glm::vec4>(scene.normals, [](const glm::vec3& n) { return glm::vec4(n, 0.0f); });
     if (scene.tangents.size() == vertices) normals.insert(normals.end(), scene.tangents.begin(), scene.tangents.end());
     normals_.assign(normals);
-    uvs_.assign(scene.uvs);
+    // Vertex colours (COLOR_0) follow the texture coordinates the same way: vertex i's RGBA is entries 3 * triangles
+    // + 2i and + 2i + 1 (scene.glsl, rt_vertex_color), so the cut-out test, which reads the uvs, reads them too.
+    vertex_colors_ = scene.colors.size() == vertices && vertices > 0;
+    if (!vertex_colors_ && !scene.colors.empty())
+        throw std::invalid_argument("GpuScene::upload: colors and positions sizes disagree");
+    std::vector<glm::vec2> uvs = scene.uvs;
+    if (vertex_colors_)
+        for (const glm::vec4& c : scene.colors) uvs.insert(uvs.end(), {glm::vec2(c.x, c.y), glm::vec2(c.z, c.w)});
+    uvs_.assign(uvs);
     material_ids_.assign(scene.material_ids);
     materials_.assign(convert<GpuMaterial>(scene.materials, [](const Material& m) { return to_gpu(m); }));
     lights_.assign(convert<GpuLight>(scene.lights, [](const Light& l) { return to_gpu(l); }));

@@ -85,6 +85,7 @@ public:
     std::size_t texture_count() const { return block_.texture_count; }
     // Whether the scene has an --environment map (then the passes are compiled with RT_ENVIRONMENT).
     bool has_environment() const { return environment_.present(); }
+    bool has_vertex_colors() const { return vertex_colors_; }   // RT_VERTEX_COLORS (scene.glsl)
     const EnvironmentTexture& environment() const { return environment_; }
     // The scene's ambient model (the passes are compiled with RT_AMBIENT_NONE or RT_AMBIENT_HEMISPHERE for it).
     AmbientModel ambient() const { return ambient_; }
@@ -105,6 +106,7 @@ public:
 
 private:
     void upload_textures(const Scene& scene);
+    bool vertex_colors_ = false;
     Buffer positions_, normals_, uvs_, material_ids_, materials_, lights_, textures_, ubo_;
     EnvironmentTexture environment_;   // uploaded only when the scene's map changes
     GpuSceneBlock block_{};

@@ -57,6 +57,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     if (settings.record_tests_per_pixel && settings.watch_pixel >= 0)
         defines.insert_or_assign("WATCH_PIXEL", std::string("1"));   // --pixel (wavefront.glsl, wf_watch)
     if (scene.has_environment()) defines.insert_or_assign("RT_ENVIRONMENT", std::string("1"));   // environment.glsl
+    if (scene.has_vertex_colors()) defines.insert_or_assign("RT_VERTEX_COLORS", std::string("1"));   // scene.glsl
     if (scene.ambient() == AmbientModel::None) defines.insert_or_assign("RT_AMBIENT_NONE", std::string("1"));
     if (scene.ambient() == AmbientModel::Hemisphere)
         defines.insert_or_assign("RT_AMBIENT_HEMISPHERE", std::string("1"));   // shading.glsl, ambient_light

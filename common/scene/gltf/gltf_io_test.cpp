@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common/scene/builtin/builtin_scenes.h"
+#include "common/scene/effects.h"
 
 namespace rt {
 namespace {
@@ -630,10 +631,9 @@ TEST(GltfLoad, QuantizedAttributesAreReadWithKhrMeshQuantizationAndRefusedWithou
     expect_one_line_scene_error(dir.file("plain.gltf"), "POSITION (accessor 0): unsupported component type");
 }
 
-TEST(GltfLoad, MorphTargetsApplyAtTheMeshDefaultWeightsAndVertexColoursAreWarnedOfOnce) {
+TEST(GltfLoad, MorphTargetsApplyAtTheMeshDefaultWeights) {
     // A triangle with one target moving every vertex by (0, 0, 2) and tilting its normals, at weight 0.5 (glTF 2.0,
-    // 3.7.2.2); weight 0 leaves the base. A node's own weights are warned of (not read). Two primitives carry
-    // COLOR_0, which is warned of once.
+    // 3.7.2.2); weight 0 leaves the base. A node's own weights are warned of (not read).
     TempDir dir;
     std::vector<unsigned char> bytes;
     append(bytes, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});   // 0: positions
@@ -660,9 +660,7 @@ TEST(GltfLoad, MorphTargetsApplyAtTheMeshDefaultWeightsAndVertexColoursAreWarned
     EXPECT_EQ(a.meshes[0].primitives[0].positions, (std::vector<glm::vec3>{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}));
     EXPECT_EQ(a.meshes[0].primitives[0].normals, (std::vector<glm::vec3>(3, {1, 0, 1})));
     EXPECT_EQ(a.meshes[0].primitives[1].positions, a.meshes[0].primitives[0].positions);
-    const std::string colours = "vertex colours (COLOR_0) are not read";
-    ASSERT_NE(warnings.find(colours), std::string::npos) << warnings;
-    EXPECT_EQ(warnings.find(colours, warnings.find(colours) + 1), std::string::npos) << warnings;   // once
+    EXPECT_EQ(a.meshes[0].primitives[0].colors, (std::vector<glm::vec4>(3, {0, 0, 1, 1})));   // COLOR_0 as RGB
     EXPECT_NE(warnings.find("node 1: its own morph target weights are not read"), std::string::npos) << warnings;
     EXPECT_EQ(flatten(a, {}).normals[0], glm::normalize(glm::vec3(1, 0, 1)));
     write_text(dir.file("zero.gltf"), gltf("0"));
@@ -670,6 +668,50 @@ TEST(GltfLoad, MorphTargetsApplyAtTheMeshDefaultWeightsAndVertexColoursAreWarned
               (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
     write_text(dir.file("nan.gltf"), gltf("1e39"));   // a weight must fit a float, like every number read
     expect_one_line_scene_error(dir.file("nan.gltf"), "weight 0 is 1e+39, which does not fit a float");
+}
+
+TEST(GltfLoad, VertexColoursAreReadClampedAndFlattenedWithWhiteForPrimitivesWithout) {
+    // COLOR_0 as normalized RGBA bytes on one primitive (glTF 2.0, 3.7.2.1), none on the other; and as floats.
+    TempDir dir;
+    std::vector<unsigned char> bytes;
+    append(bytes, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});                  // 0: positions
+    append(bytes, std::vector<std::uint8_t>{255, 0, 0, 255, 0, 255, 0, 51, 0, 0, 255, 0});   // 36: RGBA bytes
+    append(bytes, std::vector<float>{2, 0.5f, 0, 0.25f, 0.5f, 0, 0, 0.5f, -1});     // 48: floats, some outside [0, 1]
+    auto gltf = [&](const std::string& colour_accessor) {
+        std::ostringstream s;
+        s << R"({"asset":{"version":"2.0"},"nodes":[{"mesh":0}],"meshes":[{"primitives":[)"
+          << R"({"attributes":{"POSITION":0,"COLOR_0":1}},{"attributes":{"POSITION":0}}]}],)"
+          << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)" << colour_accessor
+          << R"(],"bufferViews":[{"buffer":0,"byteLength":84}],)"
+          << R"("buffers":[{"byteLength":)" << bytes.size() << R"(,"uri":")" << data_uri(bytes) << R"("}]})";
+        return s.str();
+    };
+    write_text(dir.file("bytes.gltf"), gltf(R"({"bufferView":0,"byteOffset":36,"componentType":5121,)"
+                                            R"("normalized":true,"count":3,"type":"VEC4"})"));
+    std::string warnings;
+    const SceneAsset a = load_gltf(dir.file("bytes.gltf"), &warnings);
+    EXPECT_EQ(warnings, "");
+    EXPECT_EQ(a.meshes[0].primitives[0].colors,
+              (std::vector<glm::vec4>{{1, 0, 0, 1}, {0, 1, 0, 0.2f}, {0, 0, 1, 0}}));
+    EXPECT_TRUE(a.meshes[0].primitives[1].colors.empty());
+    const Scene scene = flatten(a, {});
+    ASSERT_EQ(scene.colors.size(), 6u);   // per vertex, white for the primitive without COLOR_0
+    EXPECT_EQ(scene.colors[1], glm::vec4(0, 1, 0, 0.2f));
+    EXPECT_EQ(scene.colors[4], glm::vec4(1.0f));
+    EXPECT_TRUE(analyze_effects(scene).textures);   // a varying base colour, like a texture
+    EXPECT_TRUE(flatten(make_builtin_scene("cornell"), {}).colors.empty());   // no COLOR_0: no colours, no bytes
+
+    write_text(dir.file("floats.gltf"),
+               gltf(R"({"bufferView":0,"byteOffset":48,"componentType":5126,"count":3,"type":"VEC3"})"));
+    warnings.clear();
+    const SceneAsset b = load_gltf(dir.file("floats.gltf"), &warnings);
+    EXPECT_EQ(b.meshes[0].primitives[0].colors,
+              (std::vector<glm::vec4>{{1, 0.5f, 0, 1}, {0.25f, 0.5f, 0, 1}, {0, 0.5f, 0, 1}}));
+    EXPECT_NE(warnings.find("COLOR_0 values outside [0, 1]; clamped"), std::string::npos) << warnings;
+
+    // Exported and read back: the same colours (as float RGBA).
+    save_gltf(a, dir.file("out.gltf"));
+    EXPECT_EQ(load_gltf(dir.file("out.gltf")).meshes[0].primitives[0].colors, a.meshes[0].primitives[0].colors);
 }
 
 TEST(GltfLoad, InterleavedStrideAndByteIndicesAndPointsSkipped) {

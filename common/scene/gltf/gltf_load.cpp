@@ -100,9 +100,25 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::v
         displace("NORMAL", 3, out.normals);
         displace("TANGENT", 3, out.tangents);   // xyz only: a target's tangents carry no handedness
     }
-    if (attribute("COLOR_0") >= 0 && !warned_colors) {
-        warn(name + ": vertex colours (COLOR_0) are not read; base colours are the materials' alone");
-        warned_colors = true;
+    if (const int color = attribute("COLOR_0"); color >= 0) {
+        // Linear RGB or RGBA, float or normalized unsigned byte or short (glTF 2.0, 3.7.2.1); RGB has alpha 1.
+        const tinygltf::Accessor* a = std::size_t(color) < model.accessors.size() ? &model.accessors[std::size_t(color)]
+                                                                                  : nullptr;
+        const int components = a && a->type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+        for (const glm::vec4& c : read_vectors(model, budget(color, name), components, Integers::Normalized,
+                                               name + " COLOR_0"))
+            out.colors.push_back(components == 3 ? glm::vec4(glm::vec3(c), 1.0f) : c);
+        if (out.colors.size() != nv) invalid(name + ": COLOR_0 and POSITION counts differ");
+        // Values from files (docs/shading.md): one that is not finite is refused, one outside [0, 1] clamped.
+        bool clamped = false;
+        for (glm::vec4& c : out.colors) {
+            if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(c.w))
+                invalid(name + ": COLOR_0 holds a value that is not finite");
+            const glm::vec4 in = c;
+            c = glm::clamp(c, 0.0f, 1.0f);
+            clamped = clamped || c != in;
+        }
+        if (clamped) warn(name + ": COLOR_0 values outside [0, 1]; clamped");
     }
     if (p.indices >= 0) {
         out.indices = read_indices(model, budget(p.indices, name), name + " indices");

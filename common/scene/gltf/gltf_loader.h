@@ -106,7 +106,6 @@ struct Loader {
     // One TRIANGLES, strip or fan primitive, its morph targets applied at the mesh's default weights.
     Primitive primitive(const tinygltf::Primitive& p, int mode, const std::vector<double>& weights,
                         const std::string& name);
-    bool warned_colors = false;   // COLOR_0 is not read: said once a file
 
     Mesh mesh(const tinygltf::Mesh& m, std::size_t index);
 

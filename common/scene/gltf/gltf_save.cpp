@@ -91,6 +91,9 @@ struct Writer {
             if (p.tangents.size() == p.positions.size())
                 prim.attributes["TANGENT"] = add_floats(&p.tangents[0].x, p.tangents.size(), 4, TINYGLTF_TYPE_VEC4,
                                                         TINYGLTF_TARGET_ARRAY_BUFFER);
+            if (p.colors.size() == p.positions.size())
+                prim.attributes["COLOR_0"] = add_floats(&p.colors[0].x, p.colors.size(), 4, TINYGLTF_TYPE_VEC4,
+                                                        TINYGLTF_TARGET_ARRAY_BUFFER);
             if (!p.indices.empty()) prim.indices = add_indices(p.indices);
             out.primitives.push_back(prim);
         }

@@ -14,7 +14,7 @@
 #include "shading.glsl"
 
 // The base colour factor's alpha times the texture's alpha at the hit's uv, interpolated as surface_point
-// (scene.glsl) does and sampled as the colour is (sample_texture).
+// (scene.glsl) does and sampled as the colour is (sample_texture), times the vertex colour's alpha.
 float surface_opacity(uint triangle, float u, float v) {
     const Material m = rt_materials[rt_material_ids[triangle]];
     precise float alpha = m.base_color.a;
@@ -24,6 +24,9 @@ float surface_opacity(uint triangle, float u, float v) {
         precise vec2 uv = w * rt_uvs[i] + u * rt_uvs[i + 1u] + v * rt_uvs[i + 2u];
         alpha *= sample_texture(m.base_color_texture, rt_transform_uv(m.base_color_uv_matrix, m.base_color_uv_offset, uv)).a;
     }
+#ifdef RT_VERTEX_COLORS
+    alpha *= rt_vertex_color(triangle, u, v).a;   // COLOR_0's alpha, as surface_opacity (opacity.h)
+#endif
     return alpha;
 }
 

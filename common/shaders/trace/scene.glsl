@@ -50,6 +50,7 @@ layout(std430, binding = RT_BINDING_POSITIONS) RT_SCENE_ACCESS buffer ScenePosit
 // With normal maps, vertex i's tangent (xyz, w = handedness) is rt_normals[3 * rt_triangle_count + i].
 layout(std430, binding = RT_BINDING_NORMALS) RT_SCENE_ACCESS buffer SceneNormals { vec4 rt_normals[]; };
 #endif
+// With vertex colours (RT_VERTEX_COLORS), vertex i's RGBA is rt_uvs[3 * rt_triangle_count + 2i] and [... + 2i + 1].
 layout(std430, binding = RT_BINDING_UVS) RT_SCENE_ACCESS buffer SceneUvs { vec2 rt_uvs[]; };
 layout(std430, binding = RT_BINDING_MATERIAL_IDS) RT_SCENE_ACCESS buffer SceneMaterialIds { uint rt_material_ids[]; };
 layout(std430, binding = RT_BINDING_MATERIALS) RT_SCENE_ACCESS buffer SceneMaterials { Material rt_materials[]; };
@@ -85,6 +86,18 @@ uvec4 rt_texel_bytes(TextureInfo info, int x, int y) {
     return uvec4(w & 0xffu, (w >> 8) & 0xffu, (w >> 16) & 0xffu, w >> 24);
 }
 
+#ifdef RT_VERTEX_COLORS
+// The vertex colour (COLOR_0) at barycentrics (u, v) of a triangle: c0 + u (c1 - c0) + v (c2 - c0), exactly c0 on
+// a triangle of one colour (rt::vertex_color, common/trace/opacity.h).
+vec4 rt_vertex_color(uint triangle, float u, float v) {
+    const uint c = 3u * rt_triangle_count + 6u * triangle;
+    const vec4 c0 = vec4(rt_uvs[c], rt_uvs[c + 1u]), c1 = vec4(rt_uvs[c + 2u], rt_uvs[c + 3u]);
+    const vec4 c2 = vec4(rt_uvs[c + 4u], rt_uvs[c + 5u]);
+    precise vec4 color = c0 + u * (c1 - c0) + v * (c2 - c0);
+    return color;
+}
+#endif
+
 #ifndef RT_SCENE_MATERIALS_ONLY
 void load_triangle(uint triangle, out vec3 a, out vec3 b, out vec3 c) {
     a = rt_positions[3u * triangle].xyz;
@@ -98,6 +111,7 @@ struct SurfacePoint {
     vec3 geometric_normal;  // unit, facing the incoming ray
     vec3 shading_normal;    // unit, on the same side as geometric_normal
     vec2 uv;
+    vec4 color;             // the vertex colour (COLOR_0), white without RT_VERTEX_COLORS
     bool front_face;
     uint material;
 };
@@ -123,6 +137,11 @@ SurfacePoint surface_point(Ray ray, uint triangle, float u, float v) {
     s.shading_normal = rt_dot(ns, s.geometric_normal) < 0.0 ? -ns : ns;
     precise vec2 uv = w * rt_uvs[i] + u * rt_uvs[i + 1u] + v * rt_uvs[i + 2u];
     s.uv = uv;
+#ifdef RT_VERTEX_COLORS
+    s.color = rt_vertex_color(triangle, u, v);
+#else
+    s.color = vec4(1.0);
+#endif
     s.material = rt_material_ids[triangle];
     return s;
 }

@@ -32,6 +32,7 @@ WhittedSurface whitted_surface(Ray ray, Hit hit) {
     SurfaceTexels texels = surface_texels(vec4(1.0));
 #ifdef ENABLE_TEXTURES
     texels = sample_surface_textures(material, w.point.uv);
+    texels.base *= w.point.color;   // COLOR_0 (white without RT_VERTEX_COLORS), as Whitted::radiance
 #endif
     w.coefficients = surface_coefficients(material, texels);
     return w;
