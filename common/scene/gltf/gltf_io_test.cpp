@@ -523,6 +523,15 @@ TEST(GltfLoad, TriangleStripAndFanAreReadAsTheTrianglesTheyStandFor) {
     EXPECT_EQ(a.meshes[0].primitives[1].indices, (std::vector<std::uint32_t>{1, 3, 0, 3, 2, 0}));
     const Scene scene = flatten(a, {});
     ASSERT_EQ(scene.triangle_count(), 4u);
+    // Too few indices for a triangle: none (not the vertices in order, which an empty index list would mean), in a
+    // fan as in a plain list.
+    for (const char* mode : {"6", "4"}) {
+        std::string two = s.str();
+        two.replace(two.find(R"("count":4,"type":"SCALAR")"), 9, R"("count":2)");
+        two.replace(two.find(R"("mode":6)"), 8, std::string(R"("mode":)") + mode);
+        write_text(dir.file("two.gltf"), two);
+        EXPECT_EQ(flatten(load_gltf(dir.file("two.gltf")), {}).triangle_count(), 2u) << mode;   // the strip's two
+    }
     for (std::size_t t = 0; t < 4; ++t) {   // every triangle keeps the quad's winding: its normal is +z
         const glm::vec3 p0 = scene.positions[3 * t], p1 = scene.positions[3 * t + 1], p2 = scene.positions[3 * t + 2];
         EXPECT_GT(glm::cross(p1 - p0, p2 - p0).z, 0.0f) << "triangle " << t;

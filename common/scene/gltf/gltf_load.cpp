@@ -141,6 +141,15 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::v
     } else if (nv % 3 != 0) {
         warn(name + ": vertex count is not a multiple of 3; the rest is ignored");
     }
+    // Indices that make no triangle (fewer than 3, or a strip or fan of fewer than 3 vertices): the primitive has
+    // none. Empty indices would read as "not indexed", and flatten would make triangles of the vertices in order.
+    if (out.indices.empty() && (p.indices >= 0 || mode != TINYGLTF_MODE_TRIANGLES)) {
+        out.positions.clear();
+        out.normals.clear();
+        out.uvs.clear();
+        out.tangents.clear();
+        out.colors.clear();
+    }
     return out;
 }
 
@@ -154,7 +163,9 @@ Mesh Loader::mesh(const tinygltf::Mesh& m, std::size_t index) {
         const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-            warn(name + ": mode " + std::to_string(mode) + " is points or lines, not triangles; skipped");
+            warn(name + ": mode " + std::to_string(mode) +
+                 (mode >= 0 && mode < TINYGLTF_MODE_TRIANGLES ? " is points or lines" : " is not a glTF mode") +
+                 ", not triangles; skipped");
             continue;
         }
         out.primitives.push_back(primitive(p, mode, m.weights, name));
