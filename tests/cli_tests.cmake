@@ -69,6 +69,7 @@ function(rt_add_cli_tests stage)
       "readable_range.camera_negative|--camera: -1 is out of range: must be at least 0 and at most 2147483647|--camera|-1|--out|@DIR@/x.png"
       "count_limit.frames|--frames: 100000 is out of range: must be at least 1 and at most 10000|--frames|100000|--out|@DIR@/x.png"
       "count_limit.spp|--spp: 5000 is out of range: must be at least 1 and at most 4096|--spp|5000|--out|@DIR@/x.png"
+      "count_limit.samples_per_frame|--spp 4096 at 16384x4096 is 274877906944 samples a frame: at most 4294967296|--width|16384|--height|4096|--spp|4096|--out|@DIR@/x.png"
       "output_clobbers_input.stats_is_scene|--stats .*scene.gltf: is the scene's input file|--scene|@DIR@/scene.gltf|--stats|@DIR@/scene.gltf|--out|@DIR@/x.png"
       "output_clobbers_input.export_is_scene|--export .*scene.gltf: is the scene's input file|--scene|@DIR@/scene.gltf|--export|@DIR@/../output_clobbers_input.export_is_scene/scene.gltf"
       "output_clobbers_input.hard_link|--stats .*hard_link.json: is the scene's input file|--scene|@DIR@/scene.gltf|--stats|@DIR@/hard_link.json|--out|@DIR@/x.png"

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -280,6 +281,16 @@ void validate_options(const Options& o) {
     }
     const double pixels = double(o.render.width) * double(o.render.height);
     if (pixels > 64.0 * 1024 * 1024) throw std::invalid_argument("image too large: at most 64 Mpixels");
+    // Each bound alone is a sensible image, but 64 Mpixels at 4096 samples is 2.7e11 primary rays, months of stage
+    // 01: a frame may have at most 2^32 samples (640x480 or 1024x1024 at 4096 spp, 64 Mpixels at 64).
+    const double samples = pixels * double(o.render.spp);
+    if (samples > 4294967296.0) {
+        std::string why = "--spp ";
+        why += std::to_string(o.render.spp) + " at " + std::to_string(o.render.width) + "x" +
+               std::to_string(o.render.height) + " is " + std::to_string(std::uint64_t(samples)) +
+               " samples a frame: at most 4294967296 (2^32); lower --spp or the image size";
+        throw std::invalid_argument(why);
+    }
 }
 
 std::vector<OutputPath> planned_outputs(const Options& o) {
