@@ -356,6 +356,10 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
 
     if (chosen_camera) {
         scene.camera = *chosen_camera;
+        // Its node's -Z axis is where it looks; scaled to nothing (a scale of 0) it looks nowhere.
+        if (!(glm::length(glm::dvec3(camera_world[2])) > 0.0))
+            throw SceneError("scene " + asset.name +
+                             ": the camera's node transforms have no -Z axis to look along (a scale of 0)");
         place_camera(scene.camera, camera_world);
         if (!finite(scene.camera.position))
             throw SceneError("scene " + asset.name +

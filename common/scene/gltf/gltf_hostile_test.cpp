@@ -293,6 +293,56 @@ TEST_F(GltfHostile, TransformsOfTheWrongSizeAreRefused) {
     expect_refused(with("translation", {1, "2", 3}), "translation must be an array of 3 numbers");
 }
 
+// glTF 2.0, 5.25: a rotation is a unit quaternion. glm's mat4_cast of [1, 0, 0, 1] squashed the node's mesh to a
+// sliver instead of turning it a quarter turn; a zero quaternion turned nothing, silently.
+TEST_F(GltfHostile, RotationOfAnotherLengthIsNormalizedWithAWarningAndAZeroOneRefused) {
+    json doc = triangle();
+    doc["nodes"][0]["rotation"] = {1, 0, 0, 1};   // x, y, z, w: a quarter turn about x, length sqrt(2)
+    std::string warnings;
+    const SceneAsset asset = load_gltf(write(doc), &warnings);
+    EXPECT_NE(warnings.find("node 0: rotation has length 1.414, not 1; normalized"), std::string::npos) << warnings;
+    const Scene scene = flatten(asset, FlattenOptions{});
+    ASSERT_EQ(scene.triangle_count(), 1u);
+    // (0, 1, 0) turned a quarter about x is (0, 0, 1): the triangle keeps its size.
+    EXPECT_NEAR(scene.positions[2].x, 0.0f, 1e-6f);
+    EXPECT_NEAR(scene.positions[2].y, 0.0f, 1e-6f);
+    EXPECT_NEAR(scene.positions[2].z, 1.0f, 1e-6f);
+
+    doc["nodes"][0]["rotation"] = {0.7071, 0, 0, 0.7071};   // float rounding: no warning, as written
+    warnings.clear();
+    load_gltf(write(doc), &warnings);
+    EXPECT_EQ(warnings.find("rotation"), std::string::npos) << warnings;
+
+    doc["nodes"][0]["rotation"] = {0, 0, 0, 0};
+    expect_refused(doc, "node 0: rotation has length 0, not a unit quaternion");
+}
+
+TEST_F(GltfHostile, ProjectiveMatrixIsWarnedOf) {
+    json doc = triangle();
+    doc["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0};
+    std::string warnings;
+    load_gltf(write(doc), &warnings);
+    EXPECT_NE(warnings.find("node 0: matrix's last row is not 0, 0, 0, 1"), std::string::npos) << warnings;
+}
+
+// The camera looks along its node's -Z axis; a scale of 0 leaves none (it looked down world -Z, silently).
+TEST_F(GltfHostile, CameraScaledToNothingIsRefused) {
+    json doc = triangle();
+    doc["cameras"] = json::parse(R"([{"type":"perspective","perspective":{"yfov":1.0,"znear":0.01}}])");
+    doc["nodes"].push_back(json::parse(R"({"camera":0,"translation":[0,0,3],"scale":[0,0,0]})"));
+    doc["scenes"][0]["nodes"].push_back(1);
+    const SceneAsset asset = load_gltf(write(doc));
+    try {
+        flatten(asset, FlattenOptions{});
+        ADD_FAILURE() << "a camera scaled to nothing was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("the camera's node transforms have no -Z axis"), std::string::npos)
+            << e.what();
+    }
+    doc["nodes"][1]["scale"] = {1e-30, 1e-30, 1e-30};   // tiny is not nothing
+    EXPECT_NO_THROW(flatten(load_gltf(write(doc)), FlattenOptions{}));
+}
+
 TEST_F(GltfHostile, SceneIndexOutOfRangeIsRefused) {
     json doc = triangle();
     doc["scene"] = 3;

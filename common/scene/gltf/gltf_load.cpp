@@ -241,14 +241,29 @@ Node Loader::node(const tinygltf::Node& n, std::size_t index) {
             for (int r = 0; r < 4; ++r)   // column-major
                 m[c][r] = value(n.matrix[std::size_t(4 * c + r)], name + ": matrix");
         out.matrix = m;
+        // glTF 2.0, 5.25: a matrix is a translation, rotation and scale, its last row 0, 0, 0, 1.
+        if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f)
+            warn(name + ": matrix's last row is not 0, 0, 0, 1 (a projection); read as if it were");
     } else {
         out.translation = values<3>(n.translation, name + ": translation", glm::vec3(0.0f));
         out.scale = values<3>(n.scale, name + ": scale", glm::vec3(1.0f));
-        if (n.rotation.size() == 4)   // glTF stores x, y, z, w
-            out.rotation = glm::quat(value(n.rotation[3], name + ": rotation"),
-                                     value(n.rotation[0], name + ": rotation"),
-                                     value(n.rotation[1], name + ": rotation"),
-                                     value(n.rotation[2], name + ": rotation"));
+        if (n.rotation.size() == 4) {   // glTF stores x, y, z, w
+            const glm::quat q(value(n.rotation[3], name + ": rotation"), value(n.rotation[0], name + ": rotation"),
+                              value(n.rotation[1], name + ": rotation"), value(n.rotation[2], name + ": rotation"));
+            // glTF 2.0, 5.25: a unit quaternion. mat4_cast of any other turns and scales unevenly ([1, 0, 0, 1] made
+            // the box a flat sliver), so one of another length is normalized (as animated rotations are); files
+            // written with float rounding stay as they are, and a zero quaternion is no rotation at all.
+            const glm::dvec4 xyzw(q.x, q.y, q.z, q.w);
+            const double length = glm::length(xyzw);
+            if (!(length > 0.0))
+                invalid(name + ": rotation has length 0, not a unit quaternion");
+            out.rotation = q;
+            if (std::abs(length - 1.0) > 1e-3) {
+                warn(name + ": rotation has length " + describe(length) + ", not 1; normalized");
+                const glm::dvec4 unit = xyzw / length;
+                out.rotation = glm::quat(float(unit.w), float(unit.x), float(unit.y), float(unit.z));
+            }
+        }
     }
     check_index(n.mesh, model.meshes.size(), name + ": mesh");
     check_index(n.camera, model.cameras.size(), name + ": camera");
