@@ -2,6 +2,7 @@
 // things that are not files), the triangle budget, malformed glTF that tinygltf alone accepts, and values that do
 // not fit a float. Every refusal is a one-line SceneError naming the file.
 #include "gltf_io.h"
+#include "gltf_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -315,6 +317,58 @@ TEST_F(GltfHostile, RotationOfAnotherLengthIsNormalizedWithAWarningAndAZeroOneRe
 
     doc["nodes"][0]["rotation"] = {0, 0, 0, 0};
     expect_refused(doc, "node 0: rotation has length 0, not a unit quaternion");
+}
+
+// An animation's keys as binary data (where NaN can be written): times and values of one channel of node 0.
+json animated_triangle(const std::string& path, const std::string& interpolation, const std::vector<float>& times,
+                       const std::vector<float>& values) {
+    json doc = json::parse(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]})");
+    std::vector<unsigned char> bytes;
+    gltf_test::append(bytes, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+    gltf_test::append(bytes, times);
+    gltf_test::append(bytes, values);
+    const std::size_t n = times.size() * 4, components = path == "rotation" ? 4 : 3;
+    doc["buffers"] = {{{"uri", gltf_test::data_uri(bytes)}, {"byteLength", bytes.size()}}};
+    doc["bufferViews"] = {{{"buffer", 0}, {"byteLength", 36}},
+                          {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", n}},
+                          {{"buffer", 0}, {"byteOffset", 36 + n}, {"byteLength", values.size() * 4}}};
+    doc["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+                        {{"bufferView", 1}, {"componentType", 5126}, {"count", times.size()}, {"type", "SCALAR"}},
+                        {{"bufferView", 2}, {"componentType", 5126}, {"count", values.size() / components},
+                         {"type", components == 4 ? "VEC4" : "VEC3"}}};
+    json animation = json::parse(R"({"samplers":[{"input":1,"output":2}],"channels":[{"sampler":0,
+        "target":{"node":0}}]})");
+    animation["samplers"][0]["interpolation"] = interpolation;
+    animation["channels"][0]["target"]["path"] = path;
+    doc["animations"] = json::array({animation});
+    return doc;
+}
+
+// Keys glTF 2.0 (5.3.2, 5.3.3) does not allow are refused, naming the channel; none of these cases had a test.
+TEST_F(GltfHostile, AnimationKeysThatAreNotFiniteIncreasingOrARotationAreRefused) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::string channel = "animation 0 channel 0: ";
+    expect_refused(animated_triangle("translation", "LINEAR", {1, 0}, {0, 0, 0, 1, 0, 0}),
+                   channel + "key times must be finite and increasing");
+    expect_refused(animated_triangle("translation", "LINEAR", {0, nan}, {0, 0, 0, 1, 0, 0}),
+                   channel + "key times must be finite and increasing");
+    expect_refused(animated_triangle("translation", "LINEAR", {0, 1}, {0, 0, 0, nan, 0, 0}),
+                   channel + "output values must be finite");
+    expect_refused(animated_triangle("translation", "CUBICSPLINE", {0, 1}, {0, 0, 0, 1, 0, 0}),
+                   channel + "input and output counts do not match");
+    expect_refused(animated_triangle("rotation", "LINEAR", {0, 1}, {0, 0, 0, 1, 0, 0, 0, 0}),
+                   channel + "rotation key 1 has length 0, not a unit quaternion");
+    // A cubic spline's tangents may be zero; its keys may not.
+    const std::vector<float> zero(4, 0.0f), identity{0, 0, 0, 1};
+    auto cubic = [&](const std::vector<float>& key1) {
+        std::vector<float> v;
+        for (const auto* part : {&zero, &identity, &zero, &zero, &key1, &zero})
+            v.insert(v.end(), part->begin(), part->end());
+        return animated_triangle("rotation", "CUBICSPLINE", {0, 1}, v);
+    };
+    EXPECT_NO_THROW(load_gltf(write(cubic(identity))));
+    expect_refused(cubic(zero), channel + "rotation key 1 has length 0, not a unit quaternion");
 }
 
 TEST_F(GltfHostile, ProjectiveMatrixIsWarnedOf) {

@@ -330,6 +330,12 @@ Animation Loader::animation(const tinygltf::Animation& a, std::size_t index, con
                 invalid(name + ": output values must be finite");
         const std::size_t per_key = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
         if (c.values.size() != per_key * c.times.size()) invalid(name + ": input and output counts do not match");
+        // A rotation key is normalized where it is sampled (scene.cpp), but a zero one is no rotation at all (as for a
+        // node's rotation, above); a cubic spline's tangents (keys 3k and 3k + 2) may be zero.
+        if (c.path == AnimationPath::Rotation)
+            for (std::size_t k = 0; k < c.times.size(); ++k)
+                if (c.values[per_key * k + (per_key == 3 ? 1 : 0)] == glm::vec4(0.0f))
+                    invalid(name + ": rotation key " + std::to_string(k) + " has length 0, not a unit quaternion");
         if (c.times.empty()) continue;
         out.channels.push_back(std::move(c));
     }
