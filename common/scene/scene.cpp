@@ -162,6 +162,11 @@ glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
     return finite(n) ? n : fallback;
 }
 
+// How an error names the scene: by its file (a glTF file's first input file), else by its name (a built-in scene).
+std::string scene_label(const SceneAsset& asset) {
+    return "scene " + (asset.input_files.empty() ? asset.name : asset.input_files.front());
+}
+
 // Camera frame from a node's world matrix: glTF cameras look down local -Z with +Y up (glTF 2.0, 3.10.1). Scale is
 // removed by normalizing; a shear is removed by Gram-Schmidt (forward wins, then up).
 void place_camera(Camera& cam, const glm::mat4& world) {
@@ -242,7 +247,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     const std::vector<WorldNode> order = walk_hierarchy(asset, nodes);
     const std::uint64_t triangles = count_triangles(asset, nodes, order);
     if (triangles > options.max_triangles)
-        throw SceneError("scene " + asset.name + " has " + std::to_string(triangles) +
+        throw SceneError(scene_label(asset) + " has " + std::to_string(triangles) +
                          " triangles (instances x mesh triangles), more than the limit of " +
                          std::to_string(options.max_triangles) + " (--max-triangles raises it)");
     scene.positions.reserve(3 * triangles);
@@ -358,11 +363,11 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
         scene.camera = *chosen_camera;
         // Its node's -Z axis is where it looks; scaled to nothing (a scale of 0) it looks nowhere.
         if (!(glm::length(glm::dvec3(camera_world[2])) > 0.0))
-            throw SceneError("scene " + asset.name +
+            throw SceneError(scene_label(asset) +
                              ": the camera's node transforms have no -Z axis to look along (a scale of 0)");
         place_camera(scene.camera, camera_world);
         if (!finite(scene.camera.position))
-            throw SceneError("scene " + asset.name +
+            throw SceneError(scene_label(asset) +
                              ": the camera's transforms overflow a float (its position is not finite)");
     } else if (options.camera >= 0) {
         throw std::out_of_range("the scene has no camera " + std::to_string(options.camera) + " on a node (it has " +
