@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "brute_force_tracer.h"
+#include "common/trace/hard_cases.h"
 
 namespace rt {
 namespace {
@@ -130,6 +131,30 @@ TEST(BruteForceTracer, OccludedAgreesWithClosestOnEveryRayOfAFan) {
         Hit<float> hit;
         EXPECT_EQ(tracer.occluded(ray, counters), tracer.closest(ray, hit, counters)) << "ray " << i;
     }
+}
+
+// --intersect chooses the test of every ray, shadow rays included: on rays aimed exactly at the shared edges and
+// vertices of a closed sphere, Moller-Trumbore lets some through and the watertight test none, and a shadow ray must
+// be blocked exactly where a closest-hit ray with the same test hits (an occluded() that always tested watertight
+// passed every other test).
+TEST(BruteForceTracer, OccludedUsesTheChosenTestAsClosestDoes) {
+    const Scene s = hard_cases::closed_sphere();
+    const auto [per_vertex, per_edge, per_point] = hard_cases::kSphereRays;
+    const std::vector<Ray<float>> rays = hard_cases::rays_at_shared_vertices_and_edges<float>(
+        s, per_vertex, per_edge, per_point, hard_cases::kWatertightSeed);
+    std::size_t moller_misses = 0;
+    for (IntersectMethod m : kBoth) {
+        const BruteForceTracer<float> tracer(s, m);
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            RayCounters counters;
+            Hit<float> hit;
+            const bool hits = tracer.closest(rays[i], hit, counters);
+            moller_misses += m == IntersectMethod::Moller && !hits ? 1 : 0;
+            ASSERT_EQ(tracer.occluded(rays[i], counters), hits)
+                << (m == IntersectMethod::Moller ? "moller" : "watertight") << ", ray " << i;
+        }
+    }
+    EXPECT_GT(moller_misses, 0u) << "the rays no longer slip through Moller-Trumbore's edges";
 }
 
 }  // namespace
