@@ -56,9 +56,11 @@ struct Traced {
 };
 
 Traced trace(const Scene& s, const Ray<float>& primary, int max_depth, float cutoff = kDefaultCutoff,
-             bool reflections = true, bool refractions = true) {
+             bool reflections = true, bool refractions = true, FresnelMode fresnel = FresnelMode::Exact,
+             glm::vec3* color = nullptr) {
     const BruteForceTracer<float> tracer(s, IntersectMethod::Watertight);
     WhittedSettings ws;
+    ws.fresnel = fresnel;
     ws.effects = analyze_effects(s);
     ws.effects.reflections = ws.effects.reflections && reflections;
     ws.effects.refractions = ws.effects.refractions && refractions;
@@ -70,6 +72,7 @@ Traced trace(const Scene& s, const Ray<float>& primary, int max_depth, float cut
     const glm::vec3 c = Whitted<float, BruteForceTracer<float>>(s, tracer, ws)
                             .radiance(primary, 0, glm::vec3(1.0f), t.counters, &log);
     EXPECT_TRUE(all_finite(c));
+    if (color) *color = c;
     return t;
 }
 
@@ -167,6 +170,28 @@ TEST(WhittedRecursion, TotalInternalReflectionSpawnsNoRefractionRay) {
     ASSERT_NE(refraction, nullptr);
     EXPECT_GT(refraction->origin[2], 0.0f) << "it starts above the surface, outside";
     EXPECT_NEAR(refraction->direction[0], 1.5f * gentle.x, 1e-5f);
+}
+
+// --fresnel chooses the reflectance F of a dielectric, and the refraction carries 1 - F of the path: through a
+// glass surface onto an emitting floor below (the reflection leaves into a black sky) a ray brings back (1 - F) times
+// the floor's radiance with either formula. At 60 degrees Schlick's approximation and the exact formula differ, so a
+// recursion that ignored the mode (the exact formula always) fails here.
+TEST(WhittedRecursion, TheFresnelModeChoosesTheReflectanceOfGlass) {
+    Scene s = glass_surface();
+    Material floor;
+    floor.base_color = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    floor.emissive = glm::vec3(1.0f);
+    s.materials.push_back(floor);
+    add_square(s, -1.0f, true, 1);
+    const float theta = 1.0472f;   // 60 degrees from the normal
+    const Ray<float> ray{{0.0f, 0.0f, 1.0f}, {std::sin(theta), 0.0f, -std::cos(theta)}};
+    const float cos_i = std::cos(theta), eta = 1.0f / 1.5f;
+    glm::vec3 exact, schlick;
+    trace(s, ray, 1, kDefaultCutoff, true, true, FresnelMode::Exact, &exact);
+    trace(s, ray, 1, kDefaultCutoff, true, true, FresnelMode::Schlick, &schlick);
+    ASSERT_GT(exact.g, 0.0f) << "the refraction reaches the emitting floor";
+    EXPECT_NEAR(schlick.g / exact.g, (1.0f - fresnel_schlick(cos_i, eta)) / (1.0f - fresnel_exact(cos_i, eta)), 1e-4f);
+    EXPECT_GT(std::abs(fresnel_schlick(cos_i, eta) - fresnel_exact(cos_i, eta)), 1e-3f) << "the formulas differ here";
 }
 
 }  // namespace

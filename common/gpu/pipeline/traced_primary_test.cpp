@@ -19,12 +19,13 @@
 namespace rt {
 namespace {
 
-TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
-    gpu::test_context();
+// The GPU frame of --fresnel `fresnel`, checked against stage 01's radiance pixel by pixel and its counts.
+Image traced_primary_frame_like_stage01s(FresnelMode fresnel) {
     const int width = 80, height = 60;
     const Scene scene = builtin_scene_for("whitted", width, height);
     RenderSettings settings = test_frame_settings(scene, width, height);
     settings.record_hits = false;   // the image and the counts
+    settings.fresnel = fresnel;
 
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
@@ -39,6 +40,7 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
     const BruteForceTracer<float> tracer(scene, settings.intersect);
     WhittedSettings ws;
     ws.effects = settings.effects;
+    ws.fresnel = fresnel;
     const Whitted<float, BruteForceTracer<float>> whitted(scene, tracer, ws);
     RayCounters cpu_counters;
     std::size_t failing = 0;
@@ -53,10 +55,23 @@ TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
                 worst = std::max(worst, std::abs(linear_to_srgb(got[c]) - linear_to_srgb(expected[c])));
             if (worst > 0.016f) ++failing;
         }
-    std::printf("traced primary rays: %zu of %d pixels beyond the golden threshold\n", failing, width * height);
+    std::printf("traced primary rays, %s Fresnel: %zu of %d pixels beyond the golden threshold\n",
+                fresnel == FresnelMode::Exact ? "exact" : "Schlick", failing, width * height);
     EXPECT_LE(double(failing), 0.01 * width * height);
     for (int k = 0; k < kRayKinds; ++k) EXPECT_EQ(gpu_counters.rays[k], cpu_counters.rays[k]) << "ray kind " << k;
     EXPECT_EQ(gpu_counters.intersection_tests, cpu_counters.intersection_tests);
+    return image;
+}
+
+// Both Fresnel formulas (--fresnel): each frame as stage 01's, and the glass sphere's differ between them (a shader
+// that ignored the mode, the exact formula always, gave Schlick's frame the exact one's within the tolerance).
+TEST(Wavefront, TracedPrimaryRaysGiveStage01sImageAndCounts) {
+    gpu::test_context();
+    const Image exact = traced_primary_frame_like_stage01s(FresnelMode::Exact);
+    const Image schlick = traced_primary_frame_like_stage01s(FresnelMode::Schlick);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < exact.pixels.size(); ++i) differing += exact.pixels[i] != schlick.pixels[i] ? 1 : 0;
+    EXPECT_GT(differing, 0u) << "--fresnel schlick rendered the exact formula's frame";
 }
 
 // Traced primary rays, brute force in GLSL, against stage 01's brute force ray by ray: the same triangle for every
