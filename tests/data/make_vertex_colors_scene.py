@@ -11,13 +11,12 @@ colours"), in the three forms glTF allows, so that every stage's golden, agree a
 A point light (KHR_lights_punctual) throws the box's and the screen's shadows on the floor.
 Standard library only, deterministic: python3 tests/data/make_vertex_colors_scene.py [OUT_DIR]
 """
-import math
 import os
 import struct
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_default_world_scenes import Builder, box_faces  # noqa: E402
+from make_default_world_scenes import Builder, box_faces, quad  # noqa: E402
 
 FLOAT, UNSIGNED_BYTE, UNSIGNED_SHORT = 5126, 5121, 5123
 
@@ -46,7 +45,7 @@ def vertex_colors(path):
     b.doc["materials"][screen].update({"alphaMode": "MASK", "alphaCutoff": 0.5, "doubleSided": True})
 
     # The floor, 6 x 6 at y = 0, one colour at each corner.
-    floor = b.primitive([(-3, 0, 3), (3, 0, 3), (3, 0, -3), (-3, 0, -3)], [(0, 1, 0)] * 4, [0, 1, 2, 0, 2, 3], white)
+    floor = quad([(-3, 0, 3), (3, 0, 3), (3, 0, -3), (-3, 0, -3)], (0, 1, 0), white, b)
     colors(b, floor, [(0.9, 0.2, 0.1), (0.1, 0.8, 0.2), (0.1, 0.3, 0.9), (0.9, 0.9, 0.2)], FLOAT)
     b.mesh_node("floor", [floor])
 
@@ -55,20 +54,19 @@ def vertex_colors(path):
                    (1.0, 1.0, 0.4, 1.0), (0.4, 1.0, 1.0, 1.0), (1.0, 0.4, 1.0, 1.0)]
     box = []
     for (normal, corners), color in zip(box_faces((-1.6, 0, -0.6), (-0.6, 1.0, 0.4), False), face_colors):
-        face = b.primitive(corners, [normal] * 4, [0, 1, 2, 0, 2, 3], white)
+        face = quad(corners, normal, white, b)
         box.append(colors(b, face, [color] * 4, UNSIGNED_BYTE))
     b.mesh_node("box", box)
 
     # The screen: 2 x 1.5 upright, facing +Z, alpha from 0 (left) to 1 (right) as unsigned shorts.
     corners = [(0.2, 0.2, 0.0), (2.2, 0.2, 0.0), (2.2, 1.7, 0.0), (0.2, 1.7, 0.0)]
-    screen_prim = b.primitive(corners, [(0, 0, 1)] * 4, [0, 1, 2, 0, 2, 3], screen)
+    screen_prim = quad(corners, (0, 0, 1), screen, b)
     colors(b, screen_prim, [(1.0, 0.6, 0.2, 0.0), (0.2, 0.6, 1.0, 1.0), (0.2, 1.0, 0.6, 1.0), (1.0, 1.0, 1.0, 0.0)],
            UNSIGNED_SHORT)
     b.mesh_node("screen", [screen_prim])
 
     # The mirror behind them, 6 x 3 facing +Z, without colours.
-    b.mesh_node("mirror", [b.primitive([(-3, 0, -2), (3, 0, -2), (3, 3, -2), (-3, 3, -2)], [(0, 0, 1)] * 4,
-                                       [0, 1, 2, 0, 2, 3], mirror)])
+    b.mesh_node("mirror", [quad([(-3, 0, -2), (3, 0, -2), (3, 3, -2), (-3, 3, -2)], (0, 0, 1), mirror, b)])
 
     b.camera_node("camera", (0.0, 2.4, 5.0), -22.0, 55.0)
     b.doc["extensionsUsed"] = ["KHR_lights_punctual"]
