@@ -37,6 +37,7 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
     ws.offset = settings.offset;
     ws.epsilon = settings.epsilon;
     ws.effects = settings.effects;
+    ws.light_grid = settings.light_grid;
     const Whitted<T, BruteForceTracer<T>> whitted(scene, tracer, ws, shadow_tracer ? &*shadow_tracer : nullptr);
     const std::vector<glm::vec2> samples = pixel_sample_offsets(settings.spp);
 
@@ -68,7 +69,8 @@ FrameResult render_with(const Scene& scene, const RenderSettings& settings) {
                               const HitLog log{hits, std::uint32_t(i), pixel, work};
                               const HitLog* logged = hits || work ? &log : nullptr;
                               // One bound for every stage: a sample saturates at 2^63, as the GPU's fixed-point sum.
-                              sum += glm::min(whitted.radiance(ray, 0, glm::vec3(1.0f), counters, logged),
+                              sum += glm::min(whitted.radiance(ray, 0, glm::vec3(1.0f), counters, logged, 1,
+                                                               std::nullopt, {pixel, std::uint32_t(i)}),
                                               glm::vec3(kMaxSampleRadiance));
                           }
                           result.image.at(x, y) = sum / float(samples.size());

@@ -18,7 +18,7 @@ void GridRenderer::add_options(CLI::App& app) {
 
 bool GridRenderer::needs_grid(const Scene& scene, const RenderSettings& settings, bool trace_primary) {
     const Effects& e = settings.effects;
-    const bool shadows = e.shadows && !scene.lights.empty();
+    const bool shadows = e.shadows && scene.light_count() > 0;
     const bool secondary = settings.max_depth > 0 && (e.reflections || e.refractions);
     return trace_primary || shadows || secondary;
 }

@@ -65,7 +65,7 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
         const GpuRayHierarchy::LeafSpheres leaves = hierarchy().leaf_spheres();
         choice_.set_leaves(*leaves.buffer, leaves.count, leaves.stride);
     }
-    const unsigned lights = unsigned(scene.lights.size());
+    const unsigned lights = unsigned(scene.light_count());   // punctual and area: a group each
     layouts_[0] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, sort_options.direction_bits,
                                   lights, KeyOrder::direction_first);
     layouts_[1] = make_key_layout(scene.bounds.lo, scene.bounds.hi, sort_options.key_bits, shadow_direction_bits(),

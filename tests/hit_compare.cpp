@@ -25,7 +25,8 @@ std::string describe(const HitRecord& r) {
     std::snprintf(text, sizeof text, "sample %u pixel %u path %u %s%s", r.sample, r.pixel, r.path,
                   ray_kind_name(RayKind(kind)),
                   kind == std::uint32_t(RayKind::Shadow)
-                      ? (" light " + std::to_string(light_index(r.kind_light))).c_str()
+                      ? (" light " + std::to_string(light_index(r.kind_light)) + " cell " +
+                         std::to_string(light_sample(r.kind_light))).c_str()
                       : "");
     return text;
 }

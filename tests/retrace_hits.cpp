@@ -8,8 +8,9 @@
 // Retracing 02's own rays separates the two questions: given this exact ray, does the GPU find the hit brute force
 // finds? That holds on every driver, with only the division in t left to differ (README, "Exact hit checks").
 //
-// Shadow rays get the tmax the stages give them (whitted.h, shadow_tmax): the distance from their origin to their
-// light, or none for a directional light. The scene, its frame time and its effects come from the same options as
+// Shadow rays get the tmax the stages give them: the distance from their origin to their light, or none for a
+// directional light (whitted.h, shadow_tmax); to an area light, the distance to the cell's sample moved off the light
+// (area_light.h, area_shadow_tmax; --light-grid and --light-jitter as the stage's). The scene, its frame time and its effects come from the same options as
 // the stage's (--frames N: every frame retraces the same rays; the test reads the last).
 #include <cmath>
 #include <limits>
@@ -43,9 +44,16 @@ public:
     std::string unsupported(const Scene& scene, const RenderSettings& settings) const override {
         if (!settings.record_hits) return "retrace_hits writes nothing without --dump-hits";
         for (const HitRecord& r : rays_)
-            if (ray_kind(r.kind_light) == RayKind::Shadow && light_index(r.kind_light) >= scene.lights.size())
-                return "a shadow ray of " + rays_path_ + " names light " + std::to_string(light_index(r.kind_light)) +
-                       "; the scene has " + std::to_string(scene.lights.size()) + " light(s)";
+            if (ray_kind(r.kind_light) == RayKind::Shadow) {
+                const std::uint32_t light = light_index(r.kind_light);
+                if (light >= scene.light_count())
+                    return "a shadow ray of " + rays_path_ + " names light " + std::to_string(light) +
+                           "; the scene has " + std::to_string(scene.light_count()) + " light(s)";
+                if (light >= scene.lights.size() && light_sample(r.kind_light) >= settings.light_grid.cells())
+                    return "a shadow ray of " + rays_path_ + " names cell " + std::to_string(light_sample(r.kind_light)) +
+                           " of area light " + std::to_string(light) + "; --light-grid " +
+                           std::to_string(settings.light_grid.n) + " has " + std::to_string(settings.light_grid.cells());
+            }
         return {};
     }
 
@@ -63,8 +71,7 @@ public:
             ray.direction = glm::vec3(r.direction[0], r.direction[1], r.direction[2]);
             HitRecord out = r;
             if (ray_kind(r.kind_light) == RayKind::Shadow) {
-                const Light& light = scene.lights[light_index(r.kind_light)];
-                ray.tmax = shadow_tmax(light, ray.origin);
+                ray.tmax = recorded_shadow_tmax(scene, settings.light_grid, settings.offset, settings.epsilon, r);
                 out.triangle = shadow_tracer.occluded(ray, counters) ? 1 : -1;
                 out.t = 0.0f;
             } else {

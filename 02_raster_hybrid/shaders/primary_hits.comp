@@ -126,7 +126,7 @@ void main() {
     wf_count_tests(n);
     // STUB: e.triangle = -1;
     // END EXERCISE
-    wf_flush_tests(pixel, WF_KIND_PRIMARY, 1u, 0u);
+    wf_flush_tests(pixel, WF_KIND_PRIMARY, 1u, wf_kind_light(WF_KIND_PRIMARY, 0u, 0u));
 #ifdef ENABLE_CUTOUTS
     // Cut-outs (docs/gpu.md, "Cut-outs in stage 02"): the G-buffer knows nothing of opacity, and the raster's uv is not
     // the ray's, so it cannot say whether the ray passes through a MASK or BLEND surface. The closest candidate above

@@ -2,14 +2,16 @@
 // threads: the yardstick bench_grid holds stage 03's Mrays/s against. Benchmark-only: built when CMake finds Embree
 // (scripts/setup --bench installs it).
 //
-//     embree_rays --scene SPEC --hits FILE [--time SECONDS] [--repeat N] [--skip-primary]
+//     embree_rays --scene SPEC --hits FILE [--time SECONDS] [--repeat N] [--skip-primary] [--light-grid N]
+//                 [--light-jitter]
 //
 // SPEC is what the stages take (builtin:NAME or a .gltf/.glb); --time must be the dumped frame's (frame / fps), so
 // the triangles and lights are the same. --skip-primary drops the primary records (a stage that rasterized its
 // primaries records them but traced none). Closest-hit records (primary, reflection, refraction) are traced with
 // rtcIntersect1 over (0, inf), like the stages. The dump does not store a shadow ray's tmax, so it is rebuilt the
-// way common/trace/whitted.h sets it: the distance from the ray's origin to the record's light (infinite for a
-// directional light); shadow records are traced with rtcOccluded1. Only tracing is timed, best of --repeat runs.
+// way common/trace/whitted.h sets it (recorded_shadow_tmax: the distance to the record's light, infinite for a
+// directional light, or to its area light's cell, for the stage's --light-grid and --light-jitter, robust offsets);
+// shadow records are traced with rtcOccluded1. Only tracing is timed, best of --repeat runs.
 // Prints Mrays/s and how often Embree agrees with the dump: the same closest triangle (or both a miss), the same
 // occlusion.
 #include <embree3/rtcore.h>
@@ -73,13 +75,6 @@ RTCRay make_ray(const rt::HitRecord& r, float tfar) {
     return ray;
 }
 
-// A shadow record's tmax, as the stages set it (whitted.h: rt::shadow_tmax).
-float shadow_tmax(const rt::HitRecord& r, const rt::Scene& scene) {
-    const std::uint32_t light = rt::light_index(r.kind_light);
-    if (light >= scene.lights.size()) throw std::runtime_error("a shadow record names light " + std::to_string(light));
-    return rt::shadow_tmax(scene.lights[light], glm::vec3(r.origin[0], r.origin[1], r.origin[2]));
-}
-
 // Traces records [0, n) on `threads` threads (chunks taken from a shared counter); result[i] is the triangle id
 // (closest) or 1/-1 (occluded or not), in the dump's convention.
 void trace_all(RTCScene scene, const std::vector<rt::HitRecord>& records, const std::vector<float>& tfar,
@@ -126,10 +121,11 @@ int main(int argc, char** argv) {
     float time = 0.0f;
     int repeat = 5;
     bool skip_primary = false;
+    rt::LightGrid grid;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--skip-primary") {
-            skip_primary = true;
+        if (arg == "--skip-primary" || arg == "--light-jitter") {
+            (arg == "--skip-primary" ? skip_primary : grid.jitter) = true;
             continue;
         }
         if (i + 1 >= argc) return usage(("missing value for " + arg).c_str());
@@ -137,6 +133,10 @@ int main(int argc, char** argv) {
         else if (arg == "--hits") hits_path = argv[++i];
         else if (arg == "--time") time = std::stof(argv[++i]);
         else if (arg == "--repeat") repeat = std::max(1, std::stoi(argv[++i]));
+        else if (arg == "--light-grid") {
+            grid.n = std::stoi(argv[++i]);
+            if (grid.n < 1 || grid.n > rt::kMaxLightGrid) return usage("--light-grid must be 1 to 16");
+        }
         else return usage(("unknown option " + arg).c_str());
     }
     if (spec.empty() || hits_path.empty()) return usage("--scene and --hits are required");
@@ -152,9 +152,12 @@ int main(int argc, char** argv) {
                 return rt::ray_kind(r.kind_light) == rt::RayKind::Primary;
             });
         for (const rt::HitRecord& r : records)
-            tfar.push_back(rt::ray_kind(r.kind_light) == rt::RayKind::Shadow
-                               ? shadow_tmax(r, scene)
-                               : std::numeric_limits<float>::infinity());
+            tfar.push_back(rt::ray_kind(r.kind_light) != rt::RayKind::Shadow ? std::numeric_limits<float>::infinity()
+                           : rt::light_index(r.kind_light) >= scene.light_count()
+                               ? throw std::runtime_error("a shadow record names light " +
+                                                          std::to_string(rt::light_index(r.kind_light)))
+                               : rt::recorded_shadow_tmax(scene, grid, rt::OffsetMethod::Robust,
+                                                          rt::kDefaultEpsilon, r));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "embree_rays: error: %s\n", e.what());
         return 2;

@@ -80,9 +80,9 @@ void main() {
             if (r.pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[r.pixel], 1u);
 #endif
 #if defined(COUNT_TESTS) && defined(WATCH_PIXEL)
-            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 1u, 1u);   // --pixel: an exact test, a leaf pair
+            wf_watch(r.pixel, r.path, wf_kind_light(wf_kind(r), r.light, r.light_sample), 1u, 1u);   // --pixel: an exact test, a leaf pair
         } else {
-            wf_watch(r.pixel, r.path, wf_kind(r) | r.light << 8u, 0u, 1u);   // a leaf pair a cheap test culled
+            wf_watch(r.pixel, r.path, wf_kind_light(wf_kind(r), r.light, r.light_sample), 0u, 1u);   // a leaf pair a cheap test culled
 #endif
         }
         atomicAdd(rh_group_counts, counts);

@@ -90,7 +90,7 @@ const char* name_of(FresnelMode m) { return m == FresnelMode::Exact ? "exact" : 
 nlohmann::json settings_json(const RenderSettings& s) {
     return {{"max_depth", s.max_depth}, {"spp", s.spp},         {"cutoff", s.cutoff},
             {"intersect", name_of(s.intersect)}, {"offset", name_of(s.offset)}, {"epsilon", s.epsilon},
-            {"fresnel", name_of(s.fresnel)}};
+            {"fresnel", name_of(s.fresnel)}, {"light_grid", s.light_grid.n}, {"light_jitter", s.light_grid.jitter}};
 }
 
 void print_summary(const std::string& stage, const std::string& scene, const RenderSettings& s, const FrameStats& f,
@@ -208,6 +208,7 @@ Scene frame_scene(const std::string& stage, const Options& options, const Input&
     if (frame >= options.frames && duration > 0.0f) flatten_options.time = std::fmod(flatten_options.time, duration);
     flatten_options.camera = options.camera;
     flatten_options.max_triangles = options.max_triangles;
+    flatten_options.area_lights = options.area_lights;
     flatten_options.aspect = float(options.render.width) / float(options.render.height);
     time = flatten_options.time;
     Scene scene;
@@ -246,16 +247,24 @@ RenderSettings frame_settings(const Options& options, const Scene& scene, bool s
         settings.record_hits = true;
     }
     settings.need_image = !shown_only;   // frames past the requested ones are only shown
+    // The headlight's brightness is a guess from the view axis (docs/shading.md, "Defaults"): nearer walls of an
+    // interior clip. Unless --exposure says otherwise, such a frame is shown at --exposure auto.
+    if (!options.exposure_given && scene.default_headlight) settings.exposure.automatic = true;
     return settings;
 }
 
 // The frame's outputs: --out, --dump-hits, --heatmap (its scale joins the stats), --pixel's ray tree.
-void write_frame(const std::string& stage, const Options& options, const RenderSettings& settings, int frame,
-                 FrameResult& result, RunOutputs& files, const std::string& path) {
-    if (!path.empty())
+void write_frame(const std::string& stage, const Options& options, const Scene& scene, const RenderSettings& settings,
+                 int frame, FrameResult& result, RunOutputs& files, const std::string& path) {
+    if (!path.empty()) {
         files.write({"--out", path}, [&](const std::string& file) {
             write_image_file(file, apply_exposure(result.image, settings.exposure));   // display only
         });
+        if (!settings.exposure.is_identity())   // the EV the image was saved with (auto: this frame's)
+            result.extra["exposure"] = {
+                {"auto", settings.exposure.automatic},
+                {"ev", settings.exposure.automatic ? auto_exposure_ev(result.image) : settings.exposure.ev}};
+    }
     if (!options.dump_hits.empty())
         files.write({"--dump-hits", frame_path(options.dump_hits, frame, options.frames)},
                     [&](const std::string& file) { write_hit_file(file, result.hits); });
@@ -271,7 +280,8 @@ void write_frame(const std::string& stage, const Options& options, const RenderS
             ray_tree(result.hits, result.ray_work, std::uint32_t(settings.watch_pixel));
         const std::uint64_t heatmap_value = result.tests_per_pixel.at(std::size_t(settings.watch_pixel));
         if (options.frames > 1) print(stage + ": frame " + std::to_string(frame) + "\n");
-        print(format_ray_tree(tree, options.pixel->x, options.pixel->y, heatmap_value, result.ray_work_steps));
+        print(format_ray_tree(tree, options.pixel->x, options.pixel->y, heatmap_value, result.ray_work_steps,
+                              std::uint32_t(scene.lights.size()), settings.light_grid.n));
         result.extra["pixel"] =
             ray_tree_json(tree, options.pixel->x, options.pixel->y, heatmap_value, result.ray_work_steps);
     }
@@ -291,6 +301,7 @@ void write_stats(const std::string& stage, const Options& options, const Input& 
     if (options.stats.empty()) return;
     nlohmann::json extra = {{"triangles", scene.triangle_count()},
                             {"lights", scene.lights.size()},
+                            {"area_lights", scene.area_lights.size()},
                             {"defaults", {{"camera", scene.default_camera}, {"light", scene.default_light},
                                           {"headlight", scene.default_headlight}, {"world", scene.default_world}}},
                             {"ambient", ambient_name(scene.ambient)},
@@ -345,7 +356,7 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         if (shown_only) continue;
 
         const std::string path = options.out.empty() ? "" : frame_path(options.out, frame, options.frames);
-        write_frame(stage, options, settings, frame, result, files, path);
+        write_frame(stage, options, scene, settings, frame, result, files, path);
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
         totals.total.add(result.stats);
         if (options.frames > 1)

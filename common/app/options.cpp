@@ -218,8 +218,10 @@ void add_shared_options(CLI::App& app, Options& o) {
                const ToneCurve curve = o.render.exposure.curve;   // --tone-curve may come first
                o.render.exposure = parse_exposure(text);
                o.render.exposure.curve = curve;
+               o.exposure_given = true;
            },
-           "Scale the output by 2^EV (EV in [-20, 20]; 0 = unchanged), or auto: the 99th percentile luminance to 1")
+           "Scale the output by 2^EV (EV in [-20, 20]; 0 = unchanged), or auto: the 99th percentile luminance to 1; "
+           "default 0, or auto for a scene lit by the default headlight")
         ->default_str("0")
         ->check(CLI::Validator(
             [](std::string& text) {
@@ -255,6 +257,15 @@ void add_shared_options(CLI::App& app, Options& o) {
         ->capture_default_str()->check(number_in(-kMaxEnvironmentRotation, kMaxEnvironmentRotation))->needs(environment);
     app.add_option("--environment-intensity", o.environment_intensity, "Scale the --environment map's radiance")
         ->capture_default_str()->check(number_in(0, kMaxEnvironmentIntensity))->needs(environment);
+    // Area lights (docs/shading.md, "Area lights"): which emitters light the scene, and how each is sampled.
+    add_enum(app, "--area-lights", o.area_lights,
+             {{"auto", AreaLightMode::Auto}, {"all", AreaLightMode::All}, {"off", AreaLightMode::Off}},
+             "Emissive surfaces that light the scene: auto (those brighter than white), all, or off (they only glow)");
+    app.add_option("--light-grid", o.render.light_grid.n,
+                   "N: each hit sends N x N shadow rays to each area light, one through each cell of a grid over it")
+        ->capture_default_str()->check(whole_number_in(1, kMaxLightGrid));
+    app.add_flag("--light-jitter", o.render.light_grid.jitter,
+                 "Shift each area light's grid within its cells by an offset seeded by the pixel and its sample");
     app.add_option("--spp", o.render.spp, "Samples per pixel (anti-aliasing)")->capture_default_str()->check(whole_number_in(1, 4096));
 }
 

@@ -33,6 +33,8 @@ struct Options {
     int frames = 1;
     double fps = 24.0;
     std::uint64_t max_triangles = kDefaultMaxTriangles;   // FlattenOptions::max_triangles
+    AreaLightMode area_lights = AreaLightMode::Auto;       // FlattenOptions::area_lights
+    bool exposure_given = false;   // --exposure was given (else a frame lit by the default headlight gets auto)
     // What rays leaving the scene see (docs/shading.md, "The environment"): --background replaces the scene's
     // colour; --environment FILE (.hdr/.exr, equirectangular) replaces it by a map, turned and scaled by these.
     std::optional<glm::vec3> background;

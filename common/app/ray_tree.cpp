@@ -71,13 +71,15 @@ std::vector<RayTreeLine> ray_tree(const std::vector<HitRecord>& hits, const std:
         const bool a_shadow = kind_of(a.ray) == RayKind::Shadow;
         const bool b_shadow = kind_of(b.ray) == RayKind::Shadow;
         if (a_shadow != b_shadow) return !a_shadow;   // the ray first, then the shadow rays of its hit
-        return light_index(a.ray.kind_light) < light_index(b.ray.kind_light);
+        if (light_index(a.ray.kind_light) != light_index(b.ray.kind_light))
+            return light_index(a.ray.kind_light) < light_index(b.ray.kind_light);
+        return light_sample(a.ray.kind_light) < light_sample(b.ray.kind_light);
     });
     return lines;
 }
 
 std::string format_ray_tree(const std::vector<RayTreeLine>& lines, int x, int y, std::uint64_t heatmap_tests,
-                            const std::string& steps_name) {
+                            const std::string& steps_name, std::uint32_t punctual_lights, int light_grid) {
     std::uint64_t tests = 0, steps = 0;
     for (const RayTreeLine& l : lines) tests += l.tests, steps += l.steps;
     char buf[512];
@@ -98,6 +100,10 @@ std::string format_ray_tree(const std::vector<RayTreeLine>& lines, int x, int y,
         std::string name = ray_kind_name(kind);
         name += kind == RayKind::Shadow ? " to light " + std::to_string(light_index(r.kind_light))
                                         : " path " + std::to_string(r.path);
+        if (kind == RayKind::Shadow && light_index(r.kind_light) >= punctual_lights && light_grid > 0) {
+            const std::uint32_t cell = light_sample(r.kind_light), n = std::uint32_t(light_grid);
+            name += " cell (" + std::to_string(cell % n) + ", " + std::to_string(cell / n) + ")";
+        }
         std::string hit;
         if (r.triangle == -2)
             hit = "(no such ray in the stage's records)";

@@ -28,9 +28,11 @@ std::vector<RayTreeLine> ray_tree(const std::vector<HitRecord>& hits, const std:
                                   std::uint32_t pixel);
 
 // The printout: a heading (pixel, rays, tests, the heatmap's value) and one line per ray. `steps_name` is what
-// RayWork::steps counts in this stage ("" prints no steps).
+// RayWork::steps counts in this stage ("" prints no steps). Lights from `punctual_lights` on are area lights with a
+// `light_grid` x `light_grid` grid: their shadow rays are named by their light and cell, "light 2 cell (1, 3)".
 std::string format_ray_tree(const std::vector<RayTreeLine>& lines, int x, int y, std::uint64_t heatmap_tests,
-                            const std::string& steps_name);
+                            const std::string& steps_name, std::uint32_t punctual_lights = UINT32_MAX,
+                            int light_grid = 1);
 
 // The stats' "pixel" object: x, y, rays, tests, steps, steps_name, heatmap_tests.
 nlohmann::json ray_tree_json(const std::vector<RayTreeLine>& lines, int x, int y, std::uint64_t heatmap_tests,

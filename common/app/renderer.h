@@ -9,6 +9,7 @@
 
 #include "common/scene/effects.h"
 #include "common/scene/scene.h"
+#include "common/trace/area_light.h"
 #include "common/trace/intersect.h"
 #include "common/trace/offset.h"
 #include "common/trace/shading.h"
@@ -33,6 +34,7 @@ struct RenderSettings {
     OffsetMethod offset = OffsetMethod::Robust;
     float epsilon = kDefaultEpsilon;                     // used by --offset epsilon
     Effects effects;                                     // what to simulate (already resolved from --effects)
+    LightGrid light_grid;                                // --light-grid, --light-jitter: area lights' samples
     int threads = 0;                                     // 0 = all hardware threads
     bool quiet = false;
     Exposure exposure;                                   // display only (exposure.h): the driver applies it to the

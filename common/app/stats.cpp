@@ -35,7 +35,9 @@ nlohmann::json make_stats_json(const std::string& stage, const std::string& scen
                  {"shadow", s.counters.rays[int(RayKind::Shadow)]},
                  {"reflection", s.counters.rays[int(RayKind::Reflection)]},
                  {"refraction", s.counters.rays[int(RayKind::Refraction)]},
-                 {"transparency", s.counters.rays[int(RayKind::Transparency)]}};
+                 {"transparency", s.counters.rays[int(RayKind::Transparency)]},
+                 // of the shadow rays, those to a cell of an area light's grid (common/trace/area_light.h)
+                 {"light_samples", s.counters.light_samples}};
     j["traced_rays"] = s.traced_rays();
     j["intersection_tests"] = s.counters.intersection_tests;
     // Where they come from: the rays of each kind made these (primary: the primary-hit pass of the rasterizing

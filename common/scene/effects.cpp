@@ -89,7 +89,7 @@ Effects analyze_effects(const Scene& scene) {
     for (std::uint32_t id : scene.material_ids)
         if (id < used.size()) used[id] = true;
     Effects e;
-    e.shadows = !scene.lights.empty() && scene.triangle_count() > 0;
+    e.shadows = scene.light_count() > 0 && scene.triangle_count() > 0;   // punctual or area lights
     e.textures = !scene.colors.empty();   // vertex colours vary the base colour as a texture does
     for (std::size_t i = 0; i < used.size(); ++i) {
         if (!used[i]) continue;

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "area_lights.h"
 #include "effects.h"
 #include "tangents.h"
 
@@ -290,7 +291,9 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
         const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(world)));
         const bool mirrors = glm::determinant(glm::mat3(world)) < 0.0f;
 
-        for (const Primitive& prim : asset.meshes[std::size_t(node.mesh)].primitives) {
+        const std::vector<Primitive>& primitives = asset.meshes[std::size_t(node.mesh)].primitives;
+        for (std::size_t primitive = 0; primitive < primitives.size(); ++primitive) {
+            const Primitive& prim = primitives[primitive];
             const std::size_t nv = prim.positions.size();
             const bool has_normals = prim.normals.size() == nv;
             const bool has_uvs = prim.uvs.size() == nv;
@@ -309,6 +312,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
                 }
                 material = std::uint32_t(default_material);
             }
+            const auto first_triangle = std::uint32_t(scene.material_ids.size());
             std::vector<glm::vec4> tangents;   // the primitive's own, or generated; only for normal-mapped materials
             if (want_tangents && material_has_normal_map(scene.materials[material], scene.textures.size()))
                 tangents = primitive_tangents(prim);
@@ -350,8 +354,16 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
                 }
                 scene.material_ids.push_back(material);
             }
+            // An emitter the scene is lit by: this primitive's triangles on this node are one area light.
+            if (material_is_area_light(scene.materials[material], options.area_lights))
+                add_area_light(scene, first_triangle, std::uint32_t(scene.material_ids.size()) - first_triangle,
+                               material, "node '" + node.name + "' primitive " + std::to_string(primitive));
         }
     }
+    if (scene.light_count() > kMaxLights)
+        throw SceneError(scene_label(asset) + " has " + std::to_string(scene.lights.size()) + " lights and " +
+                         std::to_string(scene.area_lights.size()) + " area lights, more than the " +
+                         std::to_string(kMaxLights) + " a shadow ray can name (--area-lights off leaves the emitters out)");
 
     if (scene.materials.empty()) {
         Material m;
@@ -381,7 +393,7 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
     // for (both look at the bounds from the front, above); a camera of the file's own may look from anywhere (from
     // below, into a box, from inside a building), where a light outside the bounds lights nothing it sees: the
     // headlight goes with it.
-    if (scene.lights.empty() && options.add_default_light) {
+    if (scene.light_count() == 0 && options.add_default_light) {
         scene.default_headlight = !scene.default_camera;
         scene.lights.push_back(scene.default_headlight ? default_headlight(scene.bounds, scene.camera)
                                                        : default_light(scene.bounds));
@@ -390,6 +402,12 @@ Scene flatten(const SceneAsset& asset, const FlattenOptions& options, std::size_
 
     if (dropped_triangles) *dropped_triangles = dropped;
     return scene;
+}
+
+bool material_is_area_light(const Material& m, AreaLightMode mode) {
+    if (mode == AreaLightMode::Off || m.alpha_mode != AlphaMode::Opaque) return false;
+    const float radiance = std::max({m.emissive.r, m.emissive.g, m.emissive.b});
+    return mode == AreaLightMode::All ? radiance > 0.0f : radiance > kAreaLightMinRadiance;
 }
 
 const char* ambient_name(AmbientModel model) {

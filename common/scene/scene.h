@@ -109,6 +109,7 @@ struct Material {
     TextureTransform normal_transform;
     AlphaMode alpha_mode = AlphaMode::Opaque;   // glTF alphaMode
     float alpha_cutoff = 0.5f;                  // glTF alphaCutoff (MASK only)
+    bool double_sided = false;                  // glTF doubleSided: an area light of it emits from both faces
 };
 
 enum class LightType : int { Point = 0, Spot = 1, Directional = 2 };
@@ -126,6 +127,32 @@ struct Light {
     glm::vec3 position{0.0f};
     glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the way the light points (spot, directional)
 };
+
+// Which emissive surfaces light the scene (--area-lights; docs/shading.md, "Area lights"). Auto: those brighter than
+// white (emitted radiance above kAreaLightMinRadiance in some channel, which glTF reaches only through
+// KHR_materials_emissive_strength); all: every emitter; off: none (emission glows and lights nothing).
+enum class AreaLightMode : int { Auto = 0, All = 1, Off = 2 };
+constexpr float kAreaLightMinRadiance = 1.0f;
+
+// An emissive surface that lights the scene: the triangles one mesh primitive of one node put in the frame, sampled
+// as a grid of points (common/trace/area_light.h). A parallelogram (a quad: two triangles whose corners and texture
+// coordinates form one) is sampled over corner + u edge_u + v edge_v; any other shape picks a triangle by area.
+struct AreaLight {
+    std::string name;                       // "node 'light', primitive 0"
+    std::uint32_t first_triangle = 0;       // its triangles are [first_triangle, first_triangle + triangle_count)
+    std::uint32_t triangle_count = 0;
+    std::uint32_t material = 0;             // its emission: material.emissive x emissive texture at the point
+    float area = 0.0f;                      // in world units squared
+    bool two_sided = false;                 // the material is double-sided: both faces emit, else the front face
+    bool parallelogram = false;
+    glm::vec3 corner{0.0f}, edge_u{0.0f}, edge_v{0.0f};   // parallelogram: cross(edge_u, edge_v) is the front
+    glm::vec2 uv_corner{0.0f}, uv_edge_u{0.0f}, uv_edge_v{0.0f};
+    // Other shapes: Scene::area_light_cdf[cdf_first + k] is the share of the area in its triangles 0..k (the last 1).
+    std::uint32_t cdf_first = 0;
+};
+
+// At most this many lights, punctual and area together: a shadow ray names its light in 16 bits (hit_record.h).
+constexpr std::size_t kMaxLights = 65536;
 
 enum class Projection : int { Perspective = 0, Orthographic = 1 };
 
@@ -238,6 +265,10 @@ struct Scene {
     std::vector<Material> materials;    // never empty: a default material is appended when needed
     std::vector<Texture> textures;
     std::vector<Light> lights;
+    // Emissive surfaces that light the scene (FlattenOptions::area_lights). In the lights' one numbering (shadow
+    // rays, the stats) area light a is light lights.size() + a.
+    std::vector<AreaLight> area_lights;
+    std::vector<float> area_light_cdf;
     Camera camera;
     glm::vec3 background{0.0f};
     // --environment: what rays leaving the scene see instead of the background (environment.h); null = none.
@@ -253,6 +284,7 @@ struct Scene {
     // The asset has animations: a later time is another frame (the viewer keeps rendering; a still one idles).
     bool animated = false;
     std::size_t triangle_count() const { return material_ids.size(); }
+    std::size_t light_count() const { return lights.size() + area_lights.size(); }   // punctual and area
 };
 
 constexpr std::uint64_t kDefaultMaxTriangles = 20'000'000;
@@ -261,11 +293,16 @@ struct FlattenOptions {
     float time = 0.0f;            // seconds, for animations (all animations play together, clamped to their ends)
     int camera = -1;              // glTF camera index; -1 = first camera in node order, else auto-framed
     float aspect = 4.0f / 3.0f;   // image width / height, used for auto-framing
-    bool add_default_light = true;
+    bool add_default_light = true;   // when the asset has no light (an area light counts)
+    AreaLightMode area_lights = AreaLightMode::Auto;
     // Refuse frames with more triangles than this (docs/shading.md, "Limits"): 20 million triangles are about 2 GB
     // of flattened vertex data before any acceleration structure or GPU copy.
     std::uint64_t max_triangles = kDefaultMaxTriangles;
 };
+
+// Whether a material is an area light under `mode`: emission above the mode's threshold, and opaque (a MASK or BLEND
+// emitter glows but lights nothing: its light would pass through its holes).
+bool material_is_area_light(const Material& m, AreaLightMode mode);
 
 // Evaluates the asset at a time and bakes everything into world space. Triangles whose vertices are not finite are
 // dropped (counted in dropped_triangles when given); degenerate triangles are kept (the intersectors must cope).

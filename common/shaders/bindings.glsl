@@ -1,6 +1,6 @@
 // Binding points shared by C++ and GLSL: the same numbers as common/gpu/gl/bindings.h (common/gpu/gl/bindings_test.cpp
 // checks them, and the struct layouts, through GL program interface queries).
-//   SSBO 0..7 scene + counters, 8..15 common primitives, 16.. stages (RT_BINDING_STAGE_FIRST + i).
+//   SSBO 0..7 scene + counters, 8..15 common primitives, 16..31 stages (RT_BINDING_STAGE_FIRST + i), 32 area lights.
 //   UBO 0 scene block, 1.. stages. Texture unit 0 scene textures, 1.. stages.
 
 #define RT_BINDING_POSITIONS 0
@@ -29,6 +29,7 @@
 #define RT_BINDING_SORT_COUNT RT_BINDING_SCAN_OUT
 
 #define RT_BINDING_STAGE_FIRST 16
+#define RT_BINDING_AREA_LIGHTS 32   // the scene's area lights (RT_AREA_LIGHTS only)
 
 #define RT_UBO_SCENE 0
 #define RT_UBO_STAGE_FIRST 1

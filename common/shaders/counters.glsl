@@ -11,6 +11,7 @@
 #define RT_COUNTER_INTERSECTION_TESTS 4u
 #define RT_COUNTER_LOOPS_CUT 5u           // invocations whose loops the driver cut short (wavefront.glsl)
 #define RT_COUNTER_TRANSPARENCY_RAYS 6u   // continuations through BLEND surfaces (WF_KIND_TRANSPARENCY)
+#define RT_COUNTER_LIGHT_SAMPLES 7u       // of the shadow rays, those to a cell of an area light (area_light.glsl)
 // The intersection tests again, by the kind of ray that made them: RT_COUNTER_TESTS_FIRST + kind (WF_KIND_* order:
 // primary, shadow, reflection, refraction, transparency). Every add to RT_COUNTER_INTERSECTION_TESTS has its twin
 // here, so the five sum to the total (the stats' intersection_tests_by_kind; a test checks it on every stage).

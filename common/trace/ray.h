@@ -50,10 +50,12 @@ constexpr const char* ray_kind_name(RayKind kind) {
 // sum to the total is a check on the stage (the stats' intersection_tests_by_kind; tests/run_cli_case.cmake).
 struct RayCounters {
     std::uint64_t rays[kRayKinds] = {};
+    std::uint64_t light_samples = 0;   // of the shadow rays, those towards a cell of an area light (area_light.h)
     std::uint64_t intersection_tests = 0;
     std::uint64_t tests_by_kind[kRayKinds] = {};
     void add(const RayCounters& o) {
         for (int i = 0; i < kRayKinds; ++i) rays[i] += o.rays[i];
+        light_samples += o.light_samples;
         intersection_tests += o.intersection_tests;
         for (int i = 0; i < kRayKinds; ++i) tests_by_kind[i] += o.tests_by_kind[i];
     }

@@ -19,6 +19,7 @@
 #include "common/scene/effects.h"
 #include "common/scene/scene.h"
 #include "absorption.h"
+#include "area_light.h"
 #include "environment.h"
 #include "intersect.h"
 #include "normal_map.h"
@@ -36,6 +37,7 @@ struct WhittedSettings {
     OffsetMethod offset = OffsetMethod::Robust;
     float epsilon = kDefaultEpsilon;
     Effects effects;
+    LightGrid light_grid;   // how each area light is sampled (--light-grid, --light-jitter)
 };
 
 // Where the rays of one camera sample go when hits are recorded (--dump-hits: the records of hit_record.h) or when
@@ -48,14 +50,14 @@ struct HitLog {
 
     template <class T>
     void add(std::uint32_t path, RayKind kind, std::uint32_t light, const Ray<T>& ray, std::int32_t triangle,
-             float t, std::uint64_t tests) const {
-        if (work) work->push_back(RayWork{sample, path, pack_kind_light(kind, light), tests, 0});
+             float t, std::uint64_t tests, std::uint32_t light_cell = 0) const {
+        if (work) work->push_back(RayWork{sample, path, pack_kind_light(kind, light, light_cell), tests, 0});
         if (!records) return;
         HitRecord r;
         r.sample = sample;
         r.pixel = pixel;
         r.path = path;
-        r.kind_light = pack_kind_light(kind, light);
+        r.kind_light = pack_kind_light(kind, light, light_cell);
         r.triangle = triangle;
         r.t = t;
         for (int i = 0; i < 3; ++i) {
@@ -115,6 +117,18 @@ T shadow_tmax(const Light& light, const Vec3<T>& origin) {
                                                 : glm::length(Vec3<T>(light.position) - origin);
 }
 
+// The tmax a recorded shadow ray (hit_record.h) was traced with, rebuilt from its record: to its punctual light
+// (shadow_tmax) or to its area light's cell for its camera sample (area_shadow_tmax). For tools that trace a dump
+// again (tests/retrace_hits, 03's Embree bench) with the stage's --offset, --epsilon and --light-grid.
+inline float recorded_shadow_tmax(const Scene& scene, const LightGrid& grid, OffsetMethod offset, float epsilon,
+                                  const HitRecord& r) {
+    const std::uint32_t light = light_index(r.kind_light);
+    const glm::vec3 origin(r.origin[0], r.origin[1], r.origin[2]);
+    if (light < scene.lights.size()) return shadow_tmax(scene.lights[light], origin);
+    const AreaSample sample = area_light_cell(scene, grid, light, light_sample(r.kind_light), {r.pixel, r.sample});
+    return area_shadow_tmax(offset, epsilon, sample, origin, glm::vec3(r.direction[0], r.direction[1], r.direction[2]));
+}
+
 template <class T, class Tracer>
 class Whitted {
 public:
@@ -132,10 +146,11 @@ public:
     // its `path` in the pixel's ray tree (hit_record.h: 1 for the primary ray, 2p and 2p + 1 for the reflection and
     // refraction children of path p; shadow rays carry their parent's path and their light's index). `kind` is the
     // ray's kind when its path does not say it (a transparency ray); by default camera rays are primary and children
-    // reflection or refraction rays by their path's parity.
+    // reflection or refraction rays by their path's parity. `id` names the camera sample the ray belongs to
+    // (--light-jitter's offsets depend on it).
     glm::vec3 radiance(const Ray<T>& ray, int depth, const glm::vec3& path_weight, RayCounters& counters,
                        const HitLog* log = nullptr, std::uint32_t path = 1,
-                       std::optional<RayKind> kind = std::nullopt) const {
+                       std::optional<RayKind> kind = std::nullopt, PixelSample id = {}) const {
         Hit<T> hit;
         const std::uint64_t tests_before = counters.intersection_tests;
         const bool found = tracer_.closest(ray, hit, counters);
@@ -161,9 +176,9 @@ public:
         // alpha, and a transparency ray continues the ray through it with weight 1 - alpha (depth + 1, path
         // 2p + 1: a BLEND surface does not refract, so the slot is free). Without Effects::blend BLEND is a cut-out.
         if (!settings_.effects.blend || scene_.materials[sp.material].alpha_mode != AlphaMode::Blend)
-            return shade(ray, hit, sp, depth, path_weight, counters, log, path, false);
+            return shade(ray, hit, sp, depth, path_weight, counters, log, path, false, id);
         const float alpha = surface_opacity(scene_, std::size_t(hit.triangle), hit.u, hit.v);
-        glm::vec3 color = alpha * shade(ray, hit, sp, depth, path_weight * alpha, counters, log, path, true);
+        glm::vec3 color = alpha * shade(ray, hit, sp, depth, path_weight * alpha, counters, log, path, true, id);
         const glm::vec3 through_weight = path_weight * (1.0f - alpha);
         if (depth < settings_.max_depth && max_component(through_weight) > settings_.cutoff) {
             Ray<T> through;   // the same direction, from the far side of the surface
@@ -171,7 +186,7 @@ public:
             through.origin = spawn_origin(sp, ray.direction);
             counters.rays[int(RayKind::Transparency)]++;
             color += (1.0f - alpha) * radiance(through, depth + 1, through_weight, counters, log, 2 * path + 1,
-                                               RayKind::Transparency);
+                                               RayKind::Transparency, id);
         }
         return color;
     }
@@ -180,7 +195,8 @@ private:
     // The hit's own light: emission, ambient, the lights its shadow rays reach, and its reflection and refraction
     // rays (none for a BLEND surface read as coverage: `blend_surface`).
     glm::vec3 shade(const Ray<T>& ray, const Hit<T>& hit, SurfacePoint<T> sp, int depth, const glm::vec3& path_weight,
-                    RayCounters& counters, const HitLog* log, std::uint32_t path, bool blend_surface) const {
+                    RayCounters& counters, const HitLog* log, std::uint32_t path, bool blend_surface,
+                    PixelSample id) const {
         const Material& material = scene_.materials[sp.material];
         // Absorption (docs/shading.md): a ray that reaches the back face of an absorbing volume travelled inside it
         // for hit.t; what comes back along it, and the weight its children inherit, keep exp(-sigma_a t).
@@ -204,29 +220,41 @@ private:
         const glm::vec3 d = glm::vec3(ray.direction);
         const glm::vec3 n = sp.shading_normal;
 
-        // Local illumination: emission, ambient (no ray: shading.h), and each light not blocked by a shadow ray.
+        // Local illumination: emission, ambient (no ray: shading.h), and each light not blocked by a shadow ray:
+        // the punctual lights, then each cell of each area light's grid (area_light.h) as a point light.
         glm::vec3 color = s.emissive + ambient_light(scene_.ambient, s.diffuse, n);
+        const glm::vec3 p(sp.position);
         for (std::uint32_t light_index = 0; light_index < scene_.lights.size(); ++light_index) {
             const Light& light = scene_.lights[light_index];
             glm::vec3 to_light;
             float distance;
-            const glm::vec3 incidence = light_incidence(light, glm::vec3(sp.position), n, to_light, distance);
+            const glm::vec3 incidence = light_incidence(light, p, n, to_light, distance);
             if (incidence == glm::vec3(0.0f)) continue;
-            if (settings_.effects.shadows) {
-                Ray<T> shadow;
-                shadow.direction = Vec3<T>(to_light);
-                shadow.origin = spawn_origin(sp, shadow.direction);
-                shadow.tmax = shadow_tmax(light, shadow.origin);
-                counters.rays[int(RayKind::Shadow)]++;
-                const std::uint64_t shadow_tests_before = counters.intersection_tests;
-                const bool occluded = shadow_tracer_.occluded(shadow, counters);
-                const std::uint64_t shadow_tests = counters.intersection_tests - shadow_tests_before;
-                counters.tests_by_kind[int(RayKind::Shadow)] += shadow_tests;
-                if (log)
-                    log->add(path, RayKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f, shadow_tests);
-                if (occluded) continue;
+            const auto tmax = [&](const Vec3<T>& origin) { return shadow_tmax(light, origin); };
+            if (reaches_light(sp, to_light, tmax, light_index, 0, counters, log, path))
+                color += shade_light(s, incidence, n, to_light, -d);
+        }
+        const LightGrid& grid = settings_.light_grid;
+        for (std::uint32_t a = 0; a < scene_.area_lights.size(); ++a) {
+            const AreaLight& area = scene_.area_lights[a];
+            const auto light_index = std::uint32_t(scene_.lights.size() + a);
+            for (std::uint32_t cell = 0; cell < grid.cells(); ++cell) {
+                const AreaSample sample = area_light_cell(scene_, grid, light_index, cell, id);
+                const glm::vec3 emission = area_light_emission(scene_, area, sample, settings_.effects.textures);
+                Light point;
+                if (!area_sample_as_point_light(area, sample, emission, grid.cells(), p, point)) continue;
+                glm::vec3 to_light;
+                float distance;
+                const glm::vec3 incidence = light_incidence(point, p, n, to_light, distance);
+                if (incidence == glm::vec3(0.0f)) continue;
+                const Vec3<T> direction(to_light);
+                const auto tmax = [&](const Vec3<T>& origin) {
+                    return area_shadow_tmax(settings_.offset, T(settings_.epsilon), sample, origin, direction);
+                };
+                if (settings_.effects.shadows) counters.light_samples++;
+                if (reaches_light(sp, to_light, tmax, light_index, cell, counters, log, path))
+                    color += shade_light(s, incidence, n, to_light, -d);
             }
-            color += shade_light(s, incidence, n, to_light, -d);
         }
         if (depth >= settings_.max_depth) return absorbed * color;
 
@@ -249,7 +277,8 @@ private:
             r.direction = glm::normalize(Vec3<T>(dir));
             r.origin = spawn_origin(sp, r.direction);
             counters.rays[int(RayKind::Reflection)]++;
-            color += k.reflection * radiance(r, depth + 1, weight * k.reflection, counters, log, 2 * path);
+            color += k.reflection * radiance(r, depth + 1, weight * k.reflection, counters, log, 2 * path,
+                                             std::nullopt, id);
         }
         if (settings_.effects.refractions && max_component(weight * k.refraction) > settings_.cutoff) {
             glm::vec3 dir;
@@ -259,7 +288,7 @@ private:
                 r.origin = spawn_origin(sp, r.direction);
                 counters.rays[int(RayKind::Refraction)]++;
                 color += k.refraction * radiance(r, depth + 1, weight * k.refraction, counters, log,
-                                                      2 * path + 1);
+                                                      2 * path + 1, std::nullopt, id);
             }
         }
         return absorbed * color;
@@ -291,6 +320,27 @@ public:
     }
 
 private:
+    // Whether light from `to_light` reaches the point: without shadows always, else when the shadow ray from the
+    // point (origin offset off the surface, tmax(origin) long) hits nothing. The ray is counted and logged as light
+    // `light_index`'s (and, for an area light, its grid cell's).
+    template <class Tmax>
+    bool reaches_light(const SurfacePoint<T>& sp, const glm::vec3& to_light, const Tmax& tmax,
+                       std::uint32_t light_index, std::uint32_t cell, RayCounters& counters, const HitLog* log,
+                       std::uint32_t path) const {
+        if (!settings_.effects.shadows) return true;
+        Ray<T> shadow;
+        shadow.direction = Vec3<T>(to_light);
+        shadow.origin = spawn_origin(sp, shadow.direction);
+        shadow.tmax = tmax(shadow.origin);
+        counters.rays[int(RayKind::Shadow)]++;
+        const std::uint64_t tests_before = counters.intersection_tests;
+        const bool occluded = shadow_tracer_.occluded(shadow, counters);
+        const std::uint64_t tests = counters.intersection_tests - tests_before;
+        counters.tests_by_kind[int(RayKind::Shadow)] += tests;
+        if (log) log->add(path, RayKind::Shadow, light_index, shadow, occluded ? 1 : -1, 0.0f, tests, cell);
+        return !occluded;
+    }
+
     static float f0_of(float ior) { const float r = (ior - 1.0f) / (ior + 1.0f); return r * r; }
 
     Vec3<T> spawn_origin(const SurfacePoint<T>& sp, const Vec3<T>& direction) const {

@@ -7,6 +7,7 @@
 //   0..7    the scene, bound once by GpuScene::bind() (plus the counters)
 //   8..15   the common GPU primitives (scan, compaction); they bind these themselves for each call, so they never
 //           disturb the scene's bindings
+//   32      the scene's area lights, when it has some (GpuScene::bind)
 //   16..    the stages' own buffers (acceleration structures, ray queues, ...): kBindingStageFirst + i
 //           (every implementation allows at least 96 SSBO binding points on NVIDIA and 32+ on Mesa, but a single
 //           shader may use at most GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS of them, 16 on NVIDIA)
@@ -45,6 +46,9 @@ constexpr unsigned kBindingSortValuesOut = kBindingCompactOut;
 constexpr unsigned kBindingSortCount = kBindingScanOut;         // the element count, when only the GPU knows it
 
 constexpr unsigned kBindingStageFirst = 16;
+// The scene's area lights (GpuScene; scene.glsl, RT_AREA_LIGHTS), bound only for a scene that has them: after the
+// stages' points (16..31) so no stage's binding moves; read by the shade pass alone (80 points on llvmpipe).
+constexpr unsigned kBindingAreaLights = 32;
 
 // The wavefront pipeline (wavefront.glsl: WF_BINDING_*), from kBindingStageFirst; a traversal's own buffers start at
 // kBindingWavefrontTraversalFirst.

@@ -270,7 +270,7 @@ TEST(Bindings, SceneUniformBlockHasTheCppLayout) {
     expected["rt_material_count"] = {GLint(offsetof(GpuSceneBlock, material_count)), -1};
     expected["rt_light_count"] = {GLint(offsetof(GpuSceneBlock, light_count)), -1};
     expected["rt_texture_count"] = {GLint(offsetof(GpuSceneBlock, texture_count)), -1};
-    expected["rt_scene_pad"] = {GLint(offsetof(GpuSceneBlock, pad)), -1};
+    expected["rt_area_light_count"] = {GLint(offsetof(GpuSceneBlock, area_light_count)), -1};
     expected["rt_environment_rotation"] = {GLint(offsetof(GpuSceneBlock, environment_rotation)), -1};
     expected["rt_environment_pad"] = {GLint(offsetof(GpuSceneBlock, environment_pad)), -1};
     expect_layout(p, GL_UNIFORM_BLOCK, GL_UNIFORM, "SceneBlock", expected);
@@ -287,7 +287,7 @@ TEST(Bindings, WavefrontQueuesHaveTheCppLayout) {
         {"direction", offsetof(WavefrontRay, direction)}, {"pixel", offsetof(WavefrontRay, pixel)},
         {"weight", offsetof(WavefrontRay, weight)},       {"depth_kind", offsetof(WavefrontRay, depth_kind)},
         {"path", offsetof(WavefrontRay, path)},           {"light", offsetof(WavefrontRay, light)},
-        {"pad0", offsetof(WavefrontRay, pad0)},           {"pad1", offsetof(WavefrontRay, pad1)}};
+        {"light_sample", offsetof(WavefrontRay, light_sample)},          {"pad1", offsetof(WavefrontRay, pad1)}};
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRaysIn",
                   array_of<WavefrontRay>("wf_rays_in", 0, ray));
     expect_layout(p, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE, "WfRaySlots",

@@ -96,6 +96,7 @@ RayCounters CounterBuffer::ray_counters() const {
     const unsigned ray_counter[kRayKinds] = {kCounterPrimaryRays, kCounterShadowRays, kCounterReflectionRays,
                                              kCounterRefractionRays, kCounterTransparencyRays};
     for (int i = 0; i < kRayKinds; ++i) r.rays[i] = c.size() > ray_counter[i] ? c[ray_counter[i]] : 0;
+    r.light_samples = c.size() > kCounterLightSamples ? c[kCounterLightSamples] : 0;
     r.intersection_tests = c.size() > kCounterIntersectionTests ? c[kCounterIntersectionTests] : 0;
     for (unsigned k = 0; k < unsigned(kRayKinds); ++k)
         r.tests_by_kind[k] = c.size() > kCounterTestsFirst + k ? c[kCounterTestsFirst + k] : 0;

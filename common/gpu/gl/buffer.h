@@ -84,6 +84,7 @@ enum CounterIndex : unsigned {
     kCounterIntersectionTests = 4,
     kCounterLoopsCut = 5,          // invocations whose loops the driver ended early (wavefront.glsl)
     kCounterTransparencyRays = 6,  // RayKind::Transparency (continuations through BLEND surfaces)
+    kCounterLightSamples = 7,      // of the shadow rays, those to a cell of an area light (RayCounters::light_samples)
     kCounterTestsFirst = 8,        // + RayKind: the intersection tests by the kind of ray that made them (8..12)
     kCounterStageFirst = 13,
 };

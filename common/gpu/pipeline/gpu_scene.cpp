@@ -1,6 +1,7 @@
 #include "gpu_scene.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -75,6 +76,23 @@ GpuLight to_gpu(const Light& l) {
     return g;
 }
 
+GpuAreaLight to_gpu(const AreaLight& l) {
+    GpuAreaLight g{};
+    g.corner = l.corner;
+    g.area = l.area;
+    g.edge_u = l.edge_u;
+    g.first_triangle = l.first_triangle;
+    g.edge_v = l.edge_v;
+    g.triangle_count = l.triangle_count;
+    g.uv_corner = l.uv_corner;
+    g.uv_edge_u = l.uv_edge_u;
+    g.uv_edge_v = l.uv_edge_v;
+    g.material = l.material;
+    g.flags = (l.parallelogram ? kAreaLightParallelogram : 0u) | (l.two_sided ? kAreaLightTwoSided : 0u);
+    g.cdf_first = l.cdf_first;
+    return g;
+}
+
 namespace {
 template <class T, class U, class F>
 std::vector<T> convert(const std::vector<U>& in, F f) {
@@ -108,6 +126,17 @@ void GpuScene::upload(const Scene& scene) {
     material_ids_.assign(scene.material_ids);
     materials_.assign(convert<GpuMaterial>(scene.materials, [](const Material& m) { return to_gpu(m); }));
     lights_.assign(convert<GpuLight>(scene.lights, [](const Light& l) { return to_gpu(l); }));
+    // Area lights (scene.glsl, RT_AREA_LIGHTS): their records, then the running areas; no buffer without them.
+    if (scene.area_lights.empty()) {
+        area_lights_ = Buffer();
+    } else {
+        std::vector<GpuAreaLight> records = convert<GpuAreaLight>(scene.area_lights, [](const AreaLight& l) { return to_gpu(l); });
+        std::vector<float> data(records.size() * sizeof(GpuAreaLight) / sizeof(float) + scene.area_light_cdf.size());
+        std::memcpy(data.data(), records.data(), records.size() * sizeof(GpuAreaLight));
+        std::copy(scene.area_light_cdf.begin(), scene.area_light_cdf.end(),
+                  data.begin() + std::ptrdiff_t(records.size() * sizeof(GpuAreaLight) / sizeof(float)));
+        area_lights_.assign(data);
+    }
 
     upload_textures(scene);
     environment_.upload(scene.environment);
@@ -117,6 +146,7 @@ void GpuScene::upload(const Scene& scene) {
     block_.triangle_count = std::uint32_t(scene.triangle_count());
     block_.material_count = std::uint32_t(scene.materials.size());
     block_.light_count = std::uint32_t(scene.lights.size());
+    block_.area_light_count = std::uint32_t(scene.area_lights.size());
     block_.texture_count = std::uint32_t(scene.textures.size());
     block_.environment_rotation = scene.environment ? scene.environment->rotation : glm::vec2(0.0f);
     if (!ubo_) ubo_ = Buffer(sizeof(GpuSceneBlock));
@@ -176,13 +206,14 @@ void GpuScene::bind() const {
     materials_.bind(kBindingMaterials);
     lights_.bind(kBindingLights);
     textures_.bind(kBindingTextureInfo);
+    if (area_lights_) area_lights_.bind(kBindingAreaLights);
     ubo_.bind(kUboScene, GL_UNIFORM_BUFFER);
     environment_.bind();   // nothing without an environment
 }
 
 std::size_t GpuScene::bytes() const {
     return positions_.size() + normals_.size() + uvs_.size() + material_ids_.size() + materials_.size() +
-           lights_.size() + textures_.size() + ubo_.size();
+           lights_.size() + area_lights_.size() + textures_.size() + ubo_.size();
 }
 
 }  // namespace rt::gpu

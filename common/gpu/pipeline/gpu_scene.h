@@ -48,6 +48,19 @@ struct GpuLight {                        // scene.glsl: Light
 };
 static_assert(sizeof(GpuLight) == 64);
 
+// An area light (scene.glsl: rt_area_light), six vec4 of the area-light buffer; the running areas of the lights that
+// are not parallelograms follow the lights, one float each (AreaLight::cdf_first indexes them).
+struct GpuAreaLight {
+    glm::vec3 corner;  float area;
+    glm::vec3 edge_u;  std::uint32_t first_triangle;
+    glm::vec3 edge_v;  std::uint32_t triangle_count;
+    glm::vec2 uv_corner, uv_edge_u;
+    glm::vec2 uv_edge_v; std::uint32_t material, flags;   // flags: kAreaLightParallelogram | kAreaLightTwoSided
+    std::uint32_t cdf_first, pad[3];
+};
+static_assert(sizeof(GpuAreaLight) == 96);
+constexpr std::uint32_t kAreaLightParallelogram = 1, kAreaLightTwoSided = 2;
+
 struct GpuTextureInfo {                  // scene.glsl: TextureInfo
     std::int32_t width, height;
     std::int32_t sampler;                // bit 0: nearest; bits 1-2: wrap_s, bits 3-4: wrap_t (rt::Wrap)
@@ -58,7 +71,7 @@ static_assert(sizeof(GpuTextureInfo) == 16);
 struct GpuSceneBlock {                   // scene.glsl: uniform SceneBlock (std140)
     GpuCamera camera;
     glm::vec3 background; std::uint32_t triangle_count;
-    std::uint32_t material_count, light_count, texture_count, pad;
+    std::uint32_t material_count, light_count, texture_count, area_light_count;   // light_count: punctual
     glm::vec2 environment_rotation;      // Environment::rotation (cos, sin); read only with RT_ENVIRONMENT
     glm::vec2 environment_pad;
 };
@@ -67,6 +80,7 @@ static_assert(sizeof(GpuSceneBlock) == 128);
 GpuCamera to_gpu(const Camera& camera);
 GpuMaterial to_gpu(const Material& material);
 GpuLight to_gpu(const Light& light);
+GpuAreaLight to_gpu(const AreaLight& light);
 
 class GpuScene {
 public:
@@ -80,7 +94,10 @@ public:
     void bind() const;
 
     std::size_t triangle_count() const { return block_.triangle_count; }
-    std::size_t light_count() const { return block_.light_count; }
+    // Lights in the one numbering of shadow rays: the punctual ones, then the area lights.
+    std::size_t light_count() const { return std::size_t(block_.light_count) + block_.area_light_count; }
+    std::size_t punctual_light_count() const { return block_.light_count; }
+    std::size_t area_light_count() const { return block_.area_light_count; }
     std::size_t material_count() const { return block_.material_count; }
     std::size_t texture_count() const { return block_.texture_count; }
     // Whether the scene has an --environment map (then the passes are compiled with RT_ENVIRONMENT).
@@ -108,6 +125,7 @@ private:
     void upload_textures(const Scene& scene);
     bool vertex_colors_ = false;
     Buffer positions_, normals_, uvs_, material_ids_, materials_, lights_, textures_, ubo_;
+    Buffer area_lights_;   // empty without area lights
     EnvironmentTexture environment_;   // uploaded only when the scene's map changes
     GpuSceneBlock block_{};
     AmbientModel ambient_ = AmbientModel::Constant;

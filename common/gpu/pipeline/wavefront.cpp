@@ -31,6 +31,8 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     settings_ = settings;
     pixels_ = std::size_t(settings.width) * std::size_t(settings.height);   // before set_uniforms (wf_watch_base)
     lights_ = unsigned(scene.light_count());
+    punctual_lights_ = unsigned(scene.punctual_light_count());
+    light_cells_ = scene.area_light_count() > 0 ? settings.light_grid.cells() : 1;
     samples_ = 0;
     pass_order_.clear();
     dispatches_.clear();
@@ -58,6 +60,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
         defines.insert_or_assign("WATCH_PIXEL", std::string("1"));   // --pixel (wavefront.glsl, wf_watch)
     if (scene.has_environment()) defines.insert_or_assign("RT_ENVIRONMENT", std::string("1"));   // environment.glsl
     if (scene.has_vertex_colors()) defines.insert_or_assign("RT_VERTEX_COLORS", std::string("1"));   // scene.glsl
+    if (scene.area_light_count() > 0) defines.insert_or_assign("RT_AREA_LIGHTS", std::string("1"));   // area_light.glsl
     if (scene.ambient() == AmbientModel::None) defines.insert_or_assign("RT_AMBIENT_NONE", std::string("1"));
     if (scene.ambient() == AmbientModel::Hemisphere)
         defines.insert_or_assign("RT_AMBIENT_HEMISPHERE", std::string("1"));   // shading.glsl, ambient_light
@@ -144,6 +147,9 @@ void Wavefront::set_uniforms(const Program& p) const {
     p.set("wf_epsilon", settings_.epsilon);
     p.set("wf_image_size", glm::ivec2(settings_.width, settings_.height));
     p.set("wf_loop_probe", 2u);   // wf_check_loop_budget()
+    p.set("wf_light_grid", unsigned(settings_.light_grid.n));   // shade.comp, with RT_AREA_LIGHTS
+    p.set("wf_light_cells", unsigned(light_cells_));
+    p.set("wf_light_jitter", settings_.light_grid.jitter ? 1 : 0);
     if (watching()) {
         p.set("wf_watch_pixel", unsigned(settings_.watch_pixel));
         p.set("wf_watch_base", unsigned(pixels_));
@@ -172,6 +178,7 @@ void Wavefront::for_each_tile_batch(F&& run_batch) {
         const unsigned pixel_first = unsigned(band_pixels(band).first);
         for (const Program* p : {&shade_, &shadow_collect_, &trace_collect_})
             if (*p) p->set("wf_pixel_first", pixel_first);
+        shade_.set("wf_sample_index", unsigned(samples_));   // --light-jitter's seed
         const std::size_t first_tile = band * band_tile_rows_ * tiles_x;
         const std::size_t end_tile = std::min(first_tile + band_tile_rows_ * tiles_x, tiles_x * tiles_y);
         for (std::size_t first = first_tile; first < end_tile; first += per_batch) {
@@ -284,15 +291,18 @@ void Wavefront::process_hits(std::size_t hits, int depth) {
         run_shade(hits, 0, lights_, true, 0);   // unshadowed lights are summed in the shade pass
         if (secondary_slots > 0) secondary = compact_blocks(hits, secondary_kinds, out);
     } else {
+        // Runs of consecutive lights whose blocks fit beside the secondary slots (at least one light a run).
         const std::size_t slots_fit = storage_limit_ / sizeof(WavefrontRay);
-        const unsigned per_run = unsigned(std::clamp<std::size_t>((slots_fit - secondary_slots) / hits, 1, lights_));
-        for (unsigned first = 0; first < lights_; first += per_run) {
-            const unsigned count = std::min(per_run, lights_ - first);
+        const std::size_t room = slots_fit > secondary_slots ? (slots_fit - secondary_slots) / hits : 0;
+        for (unsigned first = 0; first < lights_;) {
+            unsigned count = 1;
+            std::size_t used = light_slots(first);
+            while (first + count < lights_ && used + light_slots(first + count) <= room) used += light_slots(first + count++);
             const bool last = first + count == lights_;
             const std::size_t base = last ? secondary_slots : 0;
             run_shade(hits, first, count, last, base);
             std::vector<SlotBlock> blocks = last ? secondary_kinds : std::vector<SlotBlock>{};
-            for (unsigned l = first; l < first + count; ++l) blocks.push_back({RayKind::Shadow, l});
+            for (unsigned l = first; l < first + count; ++l) blocks.push_back({RayKind::Shadow, l, light_slots(l)});
             std::vector<RayRun> shadow;   // the runs after the secondary ones, from the first shadow ray on
             std::size_t shadow_first = 0;
             for (const RayRun& run : compact_blocks(hits, blocks, out)) {
@@ -309,6 +319,7 @@ void Wavefront::process_hits(std::size_t hits, int depth) {
                 shadow_count += run.count;
             }
             if (shadow_count > 0) run_shadow(out, shadow_first, shadow_count, std::move(shadow));
+            first += count;
         }
     }
     if (!secondary.empty()) run_rays(out, secondary, depth + 1);
@@ -326,7 +337,9 @@ std::vector<Wavefront::SlotBlock> Wavefront::secondary_blocks() const {
 void Wavefront::run_shade(std::size_t hits, unsigned light_first, unsigned light_count, bool local,
                           std::size_t shadow_base) {
     const PassTimer timed(timer, "shade");
-    const std::size_t all_slots = std::max(shadow_base + (shadows_ ? std::size_t(light_count) * hits : 0),
+    std::size_t shadow_slots = 0;
+    for (unsigned l = light_first; shadows_ && l < light_first + light_count; ++l) shadow_slots += light_slots(l) * hits;
+    const std::size_t all_slots = std::max(shadow_base + shadow_slots,
                                            local ? secondary_blocks().size() * hits : std::size_t(0));
     ray_slots_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(WavefrontRay));
     flags_.reserve(std::max<std::size_t>(all_slots, 1) * sizeof(std::uint32_t));

@@ -67,7 +67,8 @@ struct WavefrontRay {
     glm::vec3 origin;    float tmax;
     glm::vec3 direction; std::uint32_t pixel;
     glm::vec3 weight;    std::uint32_t depth_kind;   // depth | kind << 16
-    std::uint32_t path, light, pad0, pad1;           // the ray in its tree (hit_record.h); light: shadow rays
+    std::uint32_t path, light, light_sample, pad1;   // the ray in its tree (hit_record.h); light and its grid
+                                                     // cell: shadow rays
 };
 static_assert(sizeof(WavefrontRay) == 64);
 struct WavefrontHit {
@@ -208,12 +209,15 @@ private:
     struct SlotBlock {
         RayKind kind;
         std::uint32_t light;
+        std::size_t per_hit = 1;   // slots per hit: an area light's cells, else 1
     };
     std::vector<RayRun> compact_blocks(std::size_t hits, const std::vector<SlotBlock>& blocks, Buffer& out);
     std::vector<SlotBlock> secondary_blocks() const;   // reflection, refraction (and transparency) slots
     Buffer& queue(int depth);
     void process_hits(std::size_t hits, int depth);
     void run_shade(std::size_t hits, unsigned light_first, unsigned light_count, bool local, std::size_t shadow_base);
+    // Shadow slots light l takes per hit: 1 for a punctual light, its grid's cells for an area light.
+    std::size_t light_slots(unsigned l) const { return l < punctual_lights_ ? 1 : light_cells_; }
     void run_rays(Buffer& rays, const std::vector<RayRun>& runs, int depth);
     void run_shadow(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs);
     void run_trace(Buffer& rays, std::size_t first, std::size_t count, std::vector<RayRun> runs);
@@ -239,7 +243,9 @@ private:
     RenderSettings settings_;
     std::size_t pixels_ = 0;
     int samples_ = 0;
-    unsigned lights_ = 0;
+    unsigned lights_ = 0;            // punctual and area (GpuScene::light_count)
+    unsigned punctual_lights_ = 0;
+    std::size_t light_cells_ = 1;    // an area light's cells (settings.light_grid), with area lights
     bool shadows_ = false, secondary_ = false;
     bool transparency_slots_ = false;   // BLEND's transparency rays have their own block (secondary_ only)
     std::size_t storage_limit_ = 0, batch_ = 0;

@@ -21,7 +21,7 @@ HitRecord make_record(const WavefrontRay& ray, int sample, RayKind kind, std::in
     r.sample = std::uint32_t(sample);
     r.pixel = ray.pixel;
     r.path = ray.path;
-    r.kind_light = std::uint32_t(kind) | (kind == RayKind::Shadow ? ray.light << 8 : 0u);
+    r.kind_light = kind == RayKind::Shadow ? pack_kind_light(kind, ray.light, ray.light_sample) : std::uint32_t(kind);
     r.triangle = triangle;
     r.t = t;
     for (int k = 0; k < 3; ++k) {

@@ -39,7 +39,8 @@ std::size_t Wavefront::storage_block_limit() const {
 
 // How many hits (or rays) one batch holds: every buffer a batch binds must fit the storage limit. Per hit of a
 // batch: the hit (80 bytes), its hit slot, and its output slots (64 bytes per ray: reflection, refraction, with BLEND
-// transparency, and at least one light's shadow ray; more lights are shaded in several runs, see process_hits).
+// transparency, and at least one light's shadow rays, an area light's grid of them; more lights are shaded in several
+// runs, see process_hits).
 void Wavefront::size_batches() {
     storage_limit_ = storage_block_limit();
     // Per-pixel sums in bands of rows of tiles (the whole image when it fits); the test counts for the whole image.
@@ -52,7 +53,7 @@ void Wavefront::size_batches() {
                          " bytes of per-pixel storage in one block, more than the storage block limit of " +
                          std::to_string(storage_limit_) + " bytes (the device's, or RT_MAX_SSBO_BYTES)");
     band_tile_rows_ = storage_limit_ / tile_row_bytes;
-    const std::size_t rays_per_hit = secondary_blocks().size() + (shadows_ ? 1 : 0);
+    const std::size_t rays_per_hit = secondary_blocks().size() + (shadows_ ? light_cells_ : 0);
     const std::size_t per_hit = std::max({sizeof(WavefrontHit), rays_per_hit * sizeof(WavefrontRay)});
     batch_ = storage_limit_ / per_hit;
     if (batch_ < kTilePixels)
@@ -89,14 +90,16 @@ void Wavefront::scatter_slots(const Buffer& slots, std::size_t n, unsigned strid
 }
 
 std::vector<RayRun> Wavefront::compact_blocks(std::size_t hits, const std::vector<SlotBlock>& blocks, Buffer& out) {
-    const std::size_t n = blocks.size() * hits;
+    std::vector<std::size_t> starts;   // each block's first slot
+    std::size_t n = 0;
+    for (const SlotBlock& b : blocks) starts.push_back(n), n += b.per_hit * hits;
     // The scan's total goes to word 0 of counts_, its value at each inner block boundary to the words after it: the
     // used slots before that block. All of them in one read-back.
     counts_.reserve(blocks.size() * sizeof(std::uint32_t));
     offsets_.reserve(std::max<std::size_t>(n, 1) * sizeof(std::uint32_t));
     scan_.exclusive_flags(flags_, offsets_, n, &counts_, 0);
     for (std::size_t b = 1; b < blocks.size(); ++b)
-        offsets_.copy_to(counts_, sizeof(std::uint32_t), b * hits * sizeof(std::uint32_t), b * sizeof(std::uint32_t));
+        offsets_.copy_to(counts_, sizeof(std::uint32_t), starts[b] * sizeof(std::uint32_t), b * sizeof(std::uint32_t));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<std::uint32_t> words = counts_.download<std::uint32_t>(blocks.size());
     ++syncs_;

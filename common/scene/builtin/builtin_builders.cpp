@@ -45,6 +45,12 @@ Material glass(const std::string& name) {
     return m;
 }
 
+Material emitter(const std::string& name, glm::vec3 radiance) {
+    Material m = diffuse(name, glm::vec3(0.9f));
+    m.emissive = radiance;
+    return m;
+}
+
 int add_mesh(SceneAsset& a, const std::string& name, Primitive p) {
     Mesh m;
     m.name = name;

@@ -15,6 +15,9 @@ namespace rt {
 Material diffuse(const std::string& name, glm::vec3 color);
 Material mirror(const std::string& name, glm::vec3 color);
 Material glass(const std::string& name);
+// A matte white surface that emits `radiance` from its front face: brighter than white, an area light
+// (docs/shading.md, "Area lights").
+Material emitter(const std::string& name, glm::vec3 radiance);
 
 // A mesh of one primitive; returns the mesh index.
 int add_mesh(SceneAsset& a, const std::string& name, Primitive p);

@@ -116,9 +116,12 @@ void add_bookshelf(SceneAsset& a, const OfficeMaterials& m, float x0, float back
 
 // Reis's shadow-heavy scene: a furnished room (six desks with chairs, monitors, lamps and mugs, two bookshelves,
 // four plants, a globe): 25,424 triangles in 330 meshes, diffuse only, one light under the ceiling.
-SceneAsset office_scene() {
+namespace {
+
+// The office without its light.
+SceneAsset office_furniture(const std::string& name) {
     SceneAsset a;
-    a.name = "office";
+    a.name = name;
     a.background = glm::vec3(0.02f, 0.02f, 0.03f);   // a closed room: never seen
     OfficeMaterials m;
     m.wood = add_material(a, diffuse("wood", glm::vec3(0.55f, 0.38f, 0.22f)));
@@ -152,8 +155,55 @@ SceneAsset office_scene() {
     add_mesh_node(a, "globe", make_uv_sphere({4.55f, 1.2f, -0.5f}, 0.3f, 64, 32, m.globe));
 
     add_camera(a, {4.2f, 1.9f, 3.6f}, {-1.0f, 0.7f, -1.5f}, 60.0f);
+    return a;
+}
+
+// A rectangular light just under a ceiling at height y, facing down: centre c, half extents hx (along x) and hz.
+void add_ceiling_light(SceneAsset& a, const glm::vec3& c, float hx, float hz, const glm::vec3& radiance) {
+    const int light = add_material(a, emitter("ceiling light", radiance));
+    add_mesh_node(a, "ceiling light", make_quad(c, {hx, 0.0f, 0.0f}, {0.0f, 0.0f, hz}, 1.0f, light));
+}
+
+}  // namespace
+
+SceneAsset office_scene() {
+    SceneAsset a = office_furniture("office");
     // Under the ceiling's centre, ~3 m from the desks: pi * 3^2 ~ 28.
     add_point_light(a, {0.0f, 2.8f, 0.0f}, 24.0f);
+    return a;
+}
+
+// The same room and point of view, lit by a 2 m x 1 m panel where the point light hung. Its power matches the point
+// light's on the desks below (L A / d^2 ~ 24 / d^2 at d ~ 2.2 m: L = 12), so the two images compare.
+SceneAsset office_soft_scene() {
+    SceneAsset a = office_furniture("office_soft");
+    add_ceiling_light(a, {0.0f, 2.99f, 0.0f}, 1.0f, 0.5f, glm::vec3(12.0f, 11.5f, 10.5f));
+    return a;
+}
+
+// A 4 m x 3 m x 4 m room under a 1.2 m x 0.6 m ceiling light (radiance 18: about 0.5 on the floor below, a white
+// Lambertian surface 3 m under 0.72 m^2). The pillar's shadow runs across the floor, sharp at its foot and wider
+// further away; the ball's is dark where it touches the floor; the table's top casts an umbra ringed by penumbra.
+SceneAsset soft_shadows_scene() {
+    SceneAsset a;
+    a.name = "soft_shadows";
+    a.background = glm::vec3(0.02f, 0.02f, 0.03f);   // a closed room: never seen
+    const int wall = add_material(a, diffuse("wall", glm::vec3(0.8f, 0.78f, 0.74f)));
+    const int floor_m = add_material(a, diffuse("floor", glm::vec3(0.6f, 0.58f, 0.55f)));
+    const int left = add_material(a, diffuse("left wall", glm::vec3(0.7f, 0.25f, 0.2f)));
+    const int right = add_material(a, diffuse("right wall", glm::vec3(0.25f, 0.45f, 0.7f)));
+    add_room(a, {-2.0f, 0.0f, -2.0f}, {2.0f, 3.0f, 2.0f}, {floor_m, wall, wall, wall, left, right});
+    const int pillar = add_material(a, diffuse("pillar", glm::vec3(0.85f, 0.8f, 0.7f)));
+    const int ball = add_material(a, diffuse("ball", glm::vec3(0.8f, 0.55f, 0.15f)));
+    const int wood = add_material(a, diffuse("table", glm::vec3(0.5f, 0.33f, 0.2f)));
+    add_mesh_node(a, "pillar", make_box({-1.25f, 0.0f, -1.1f}, {-0.95f, 1.8f, -0.8f}, pillar));
+    add_mesh_node(a, "ball", make_uv_sphere({0.8f, 0.45f, -0.7f}, 0.45f, 32, 16, ball));
+    add_mesh_node(a, "table top", make_box({-1.0f, 0.7f, 0.0f}, {-0.1f, 0.75f, 0.6f}, wood));
+    for (float x : {-0.95f, -0.18f})
+        for (float z : {0.05f, 0.52f})
+            add_mesh_node(a, "table leg", make_box({x, 0.0f, z}, {x + 0.03f, 0.7f, z + 0.03f}, wood));
+    add_ceiling_light(a, {0.0f, 2.99f, -0.3f}, 0.6f, 0.3f, glm::vec3(18.0f, 17.0f, 15.0f));
+    add_camera(a, {1.1f, 1.45f, 1.9f}, {-0.3f, 1.25f, -1.0f}, 80.0f);
     return a;
 }
 

@@ -236,8 +236,8 @@ int parse_sphere_count(const std::string& text) {
 
 
 std::vector<std::string> builtin_scene_names() {
-    return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office", "material_maps",
-            "absorption", "normal_map", "cutouts"};
+    return {"whitted", "cornell", "diffuse", "dynamic", "spheres", "far", "mirror_box", "office", "office_soft",
+            "material_maps", "absorption", "normal_map", "cutouts", "soft_shadows"};
 }
 
 std::string builtin_scene_list() {
@@ -254,6 +254,8 @@ SceneAsset make_builtin_scene(const std::string& name) {
     if (name == "far") return far();
     if (name == "mirror_box") return mirror_box_scene();
     if (name == "office") return office_scene();
+    if (name == "office_soft") return office_soft_scene();
+    if (name == "soft_shadows") return soft_shadows_scene();
     if (name == "material_maps") return material_maps_scene();
     if (name == "absorption") return absorption_scene();
     if (name == "normal_map") return normal_map_scene();

@@ -17,9 +17,11 @@ namespace rt {
 //   far      The whitted scene and its camera translated by (1e4, 1e4, 1e4): a fixed epsilon offset fails there.
 //   mirror_box  A 440-triangle object inside a closed box of six mirrors: reflection-heavy (stage 05's table).
 //   office   A furnished room, 25,424 triangles in 330 meshes, one light: shadow-heavy (stage 05's table).
+//   office_soft  The office lit by a ceiling panel (an area light): soft shadows, many shadow rays per hit.
 //   material_maps  A floor whose metallic-roughness texture alternates mirror metal and rough plastic, and a panel
 //            with an emissive texture: textures that scale material factors.
 //   cutouts  Alpha cut-outs: a fence with holes (MASK) casting a shadow, a mirror reflecting it, a BLEND pane.
+//   soft_shadows  A room lit by a rectangular ceiling light only: a pillar, a ball and a table cast penumbrae.
 std::vector<std::string> builtin_scene_names();
 
 // The registry as one line, for --help and the "unknown built-in scene" error (the same text in both):

@@ -96,6 +96,7 @@ Material Loader::material(const tinygltf::Material& m, std::size_t index) {
     else if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::Blend;
     else if (m.alphaMode != "OPAQUE") warn(name + ": alphaMode '" + m.alphaMode + "' is unknown; OPAQUE used");
     out.alpha_cutoff = value(m.alphaCutoff, name + ": alphaCutoff", 0.0f);
+    out.double_sided = m.doubleSided;
     return out;
 }
 

@@ -139,6 +139,7 @@ struct Writer {
         }
         if (m.alpha_mode != AlphaMode::Opaque) out.alphaMode = m.alpha_mode == AlphaMode::Mask ? "MASK" : "BLEND";
         out.alphaCutoff = m.alpha_cutoff;
+        out.doubleSided = m.double_sided;   // which faces of an area light emit
         if (m.transmission != 0.0f) {
             tinygltf::Value::Object transmission{{"transmissionFactor", tinygltf::Value(double(m.transmission))}};
             if (m.transmission_texture >= 0)

@@ -57,6 +57,8 @@ layout(std430, binding = RT_BINDING_MATERIALS) RT_SCENE_ACCESS buffer SceneMater
 #ifndef RT_SCENE_MATERIALS_ONLY
 layout(std430, binding = RT_BINDING_LIGHTS) RT_SCENE_ACCESS buffer SceneLights { Light rt_lights[]; };
 #endif
+// The area lights' buffer is declared in area_light.glsl, which only the shade pass includes: Mesa counts every
+// declared storage block against the 16 a compute shader may use, read or not.
 // sRGB decode and alpha tables (the exact floats the C++ sample_texture uses), then the textures, unpadded: words
 // [0, 4 * rt_texture_count) hold one TextureInfo per texture, the rest every texture's texels one after the other
 // (one uint per texel: the file's RGBA8 bytes r, g, b, a from the low byte up; row 0 = top of the image = v 0).
@@ -70,7 +72,7 @@ layout(std430, binding = RT_BINDING_TEXTURE_INFO) readonly buffer SceneTextures 
 layout(std140, binding = RT_UBO_SCENE) uniform SceneBlock {   // 128 bytes (GpuSceneBlock)
     Camera rt_camera;
     vec3 rt_background; uint rt_triangle_count;
-    uint rt_material_count; uint rt_light_count; uint rt_texture_count; uint rt_scene_pad;
+    uint rt_material_count; uint rt_light_count; uint rt_texture_count; uint rt_area_light_count;   // lights: punctual
     vec2 rt_environment_rotation; vec2 rt_environment_pad;   // environment.glsl (cos, sin of --environment-rotation)
 };
 

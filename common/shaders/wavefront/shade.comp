@@ -10,7 +10,8 @@
 //
 // Outputs go to fixed slots of wf_ray_slots (flag 1 when used), so that compaction keeps them grouped and in the
 // order of the hits: for hit i of n, its reflection ray at slot i, its refraction ray at n + i, its transparency ray
-// (ENABLE_BLEND) at 2n + i, its shadow ray towards light wf_light_first + l at wf_shadow_slot_base + l n + i. Each
+// (ENABLE_BLEND) at 2n + i, its shadow ray towards punctual light wf_light_first + l at wf_shadow_slot_base + l n + i
+// (with area lights, each takes a block of n x cells slots, hit i's rays to its cells together). Each
 // kind (and light) has its block, so the queues hold them in runs (rt::gpu::RayRun) whose lengths the host learns
 // from the compaction. The secondary slots exist only with WF_SECONDARY_RAYS (some effect spawns rays and
 // max_depth > 0); without it a BLEND surface still weights its terms by coverage. When the shadow slots of all
@@ -21,6 +22,8 @@
 #include "common/shaders/trace/whitted.glsl"
 // surface_opacity, for BLEND coverage (compiled only with ENABLE_CUTOUTS)
 #include "common/shaders/trace/opacity.glsl"
+// the area lights' samples (compiled only with RT_AREA_LIGHTS)
+#include "common/shaders/trace/area_light.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -28,9 +31,25 @@ uniform uint wf_light_first;        // the lights whose shadow rays this run spa
 uniform uint wf_light_count;
 uniform uint wf_shadow_slot_base;
 uniform int wf_shade_local;
+#ifdef RT_AREA_LIGHTS
+// Lights from rt_light_count on are area lights, each wf_light_cells shadow slots per hit (the cells of its grid,
+// --light-grid; hit i's at i * cells + cell of the light's block); wf_light_jitter: --light-jitter.
+uniform uint wf_light_grid;
+uniform uint wf_light_cells;
+uniform int wf_light_jitter;
+uniform uint wf_sample_index;   // the camera sample (--light-jitter's offsets depend on it)
+#endif
 
 // Rays spawned by this thread, added to the counters once at the end.
-uint shadow_rays = 0u, reflection_rays = 0u, refraction_rays = 0u, transparency_rays = 0u;
+uint shadow_rays = 0u, reflection_rays = 0u, refraction_rays = 0u, transparency_rays = 0u, light_sample_rays = 0u;
+
+// Shadow slots a light takes per hit before light l: one per punctual light, wf_light_cells per area light.
+uint wf_light_slots_before(uint l) {
+#ifdef RT_AREA_LIGHTS
+    if (l > rt_light_count) return rt_light_count + (l - rt_light_count) * wf_light_cells;
+#endif
+    return l;
+}
 
 void shade(uint i, WavefrontHit entry) {
     const WavefrontRay incoming = entry.ray;
@@ -63,15 +82,53 @@ void shade(uint i, WavefrontHit entry) {
 
     const uint n_hits = wf_input_count;
 
-    // Local illumination.
+    // Local illumination: the punctual lights, then each cell of each area light as a point light (Whitted::shade).
     vec3 local = whitted_emission_ambient(w.coefficients, n);
+    const uint slots_first = wf_light_slots_before(wf_light_first);
     for (uint l = wf_light_first; l < wf_light_first + wf_light_count; ++l) {
+#ifdef RT_AREA_LIGHTS
+        if (l >= rt_light_count) {
+            const AreaLight area = rt_area_light(l - rt_light_count);
+            const vec2 offset = light_grid_offset(wf_light_jitter != 0, incoming.pixel, wf_sample_index, l);
+            for (uint cell = 0u; cell < wf_light_cells; ++cell) {
+#ifdef ENABLE_SHADOWS
+                const uint slot = wf_shadow_slot_base + (wf_light_slots_before(l) - slots_first) * n_hits +
+                                  i * wf_light_cells + cell;
+                wf_flags[slot] = 0u;
+#endif
+                const AreaSample on_light = sample_area_light(area, light_grid_point(wf_light_grid, cell, offset));
+                Light point;
+                if (!area_sample_as_point_light(area, on_light, area_light_emission(area, on_light), wf_light_cells,
+                                                sp.position, point))
+                    continue;
+                vec3 to_light;
+                float distance;
+                const vec3 incidence = light_incidence(point, sp.position, n, to_light, distance);
+                if (incidence == vec3(0.0)) continue;
+                const vec3 c = shade_light(w.coefficients, incidence, n, to_light, -d);
+#ifdef ENABLE_SHADOWS
+                const vec3 origin = whitted_spawn_origin(sp, to_light, wf_offset, wf_epsilon);
+                const float tmax = area_shadow_tmax(wf_offset, wf_epsilon, on_light, origin, to_light);
+                WavefrontRay shadow = wf_make_ray(origin, to_light, tmax, weight * c, incoming.pixel,
+                                                  wf_depth(incoming), WF_KIND_SHADOW, incoming.path, l);
+                shadow.light_sample = cell;
+                wf_ray_slots[slot] = shadow;
+                wf_flags[slot] = 1u;
+                ++shadow_rays;
+                ++light_sample_rays;
+#else
+                local += c;
+#endif
+            }
+            continue;
+        }
+#endif
         const Light light = rt_lights[l];
         vec3 to_light;
         float distance;
         const vec3 incidence = light_incidence(light, sp.position, n, to_light, distance);
 #ifdef ENABLE_SHADOWS
-        const uint slot = wf_shadow_slot_base + (l - wf_light_first) * n_hits + i;
+        const uint slot = wf_shadow_slot_base + (wf_light_slots_before(l) - slots_first) * n_hits + i;
         wf_flags[slot] = 0u;
 #endif
         if (incidence == vec3(0.0)) continue;
@@ -152,5 +209,6 @@ void main() {
     rt_counter_add(RT_COUNTER_REFLECTION_RAYS, reflection_rays);
     rt_counter_add(RT_COUNTER_REFRACTION_RAYS, refraction_rays);
     rt_counter_add(RT_COUNTER_TRANSPARENCY_RAYS, transparency_rays);
+    rt_counter_add(RT_COUNTER_LIGHT_SAMPLES, light_sample_rays);
     wf_check_loop_budget();
 }

@@ -39,14 +39,15 @@
 
 // A queued ray (64 bytes, std430; WavefrontRay in wavefront.h). For shadow rays `weight` is the light's whole
 // contribution to the pixel (path weight times the unshadowed light), added when nothing blocks the ray.
-// `path` and `light` name the ray in the ray tree (common/trace/hit_record.h): path 1 is the primary ray, 2p and 2p + 1
-// the reflection and refraction (on a BLEND surface: transparency) children of path p (meaningful up to depth 30); a
-// shadow ray has its parent hit's path and the index of its light.
+// `path`, `light` and `light_sample` name the ray in the ray tree (common/trace/hit_record.h): path 1 is the primary
+// ray, 2p and 2p + 1 the reflection and refraction (on a BLEND surface: transparency) children of path p (meaningful
+// up to depth 30); a shadow ray has its parent hit's path, the index of its light and, for an area light, the cell
+// of the light's grid it aims at (0 otherwise).
 struct WavefrontRay {
     vec3 origin; float tmax;
     vec3 direction; uint pixel;
     vec3 weight; uint depth_kind;   // depth in bits 0-15, kind in bits 16-31
-    uint path; uint light; uint pad0; uint pad1;
+    uint path; uint light; uint light_sample; uint pad1;
 };
 
 // A ray and what it hit (80 bytes): the input of the shade pass.
@@ -103,10 +104,13 @@ WavefrontRay wf_make_ray(vec3 origin, vec3 direction, float tmax, vec3 weight, u
     r.depth_kind = (depth & 0xffffu) | (kind << 16);
     r.path = path;
     r.light = light;
-    r.pad0 = 0u;
+    r.light_sample = 0u;
     r.pad1 = 0u;
     return r;
 }
+
+// The ray's name in the ray tree without its path (HitRecord::kind_light: kind, light, light sample).
+uint wf_kind_light(uint kind, uint light, uint light_sample) { return kind | (light & 0xffffu) << 8u | light_sample << 24u; }
 
 Ray wf_ray(WavefrontRay r) { return make_ray(r.origin, r.direction, r.tmax); }
 
@@ -192,7 +196,7 @@ void wf_check_loop_budget() {
 
 // --pixel X,Y (WATCH_PIXEL, with RECORD_TESTS_PER_PIXEL): what each ray of that pixel costs, for the ray tree the
 // driver prints. After the per-pixel counts, wf_tests_per_pixel holds at wf_watch_base the number of entries used,
-// then WF_WATCH_CAPACITY entries of 6 uints: (path, kind | light << 8, tests lo, tests hi, steps, unused), the key
+// then WF_WATCH_CAPACITY entries of 6 uints: (path, wf_kind_light, tests lo, tests hi, steps, unused), the key
 // named as the ray's HitRecord (hit_record.h). A part for a key already listed is added to it; two threads adding the
 // first part of one key at once may make two entries, which the CPU adds up. Drained after every sample.
 #ifdef WATCH_PIXEL
@@ -237,7 +241,7 @@ void wf_count_steps(uint n) {
     wf_steps += n;
 #endif
 }
-void wf_flush_tests(uint pixel, uint kind, uint path, uint light) {
+void wf_flush_tests(uint pixel, uint kind, uint path, uint kind_light) {
 #ifdef COUNT_TESTS
     rt_counter_add(RT_COUNTER_INTERSECTION_TESTS, wf_tests);
     rt_counter_add(RT_COUNTER_TESTS_FIRST + kind, wf_tests);
@@ -245,9 +249,11 @@ void wf_flush_tests(uint pixel, uint kind, uint path, uint light) {
     if (wf_tests != 0u && pixel != WF_NO_PIXEL) atomicAdd(wf_tests_per_pixel[pixel], wf_tests);
 #endif
 #ifdef WATCH_PIXEL
-    wf_watch(pixel, path, kind | light << 8u, wf_tests, wf_steps);
+    wf_watch(pixel, path, kind_light, wf_tests, wf_steps);
 #endif
 #endif
 }
 // The same for the one ray a thread of a per-ray pass traced.
-void wf_flush_ray_tests(WavefrontRay r) { wf_flush_tests(r.pixel, wf_kind(r), r.path, r.light); }
+void wf_flush_ray_tests(WavefrontRay r) {
+    wf_flush_tests(r.pixel, wf_kind(r), r.path, wf_kind_light(wf_kind(r), r.light, r.light_sample));
+}
