@@ -228,8 +228,8 @@ TEST(GridRenderer, TracedPrimaryRaysGiveBruteForcesFrame) {
     }
 }
 
-// The large flat grid whose floor quad the build once cut short on llvmpipe (GpuGrid test above): every traced ray
-// finds what stage 01's brute force finds, floor included. (Its 100,802 triangles are beyond what one GPU
+// The large flat grid whose floor quad an unsplit build would cut short on llvmpipe (GpuGrid test above): every
+// traced ray finds what stage 01's brute force finds, floor included. (Its 100,802 triangles are beyond what one GPU
 // invocation may loop over on llvmpipe, so the reference is the CPU's brute force, not brute_force.glsl.)
 TEST(GridRenderer, TracedRaysOfALargeFlatGridHitWhatStage01Hits) {
     gpu::test_context();

@@ -57,9 +57,8 @@ void GpuRayHierarchy::prepare(const gpu::GpuScene& scene, const std::vector<Obje
     gpu::check_gl("04_ray_hierarchy: bounding spheres and objects");
 }
 
-// One program per pass, each holding only its own code (rh_spheres.comp: 2, ot_build.comp: 5). On llvmpipe the tree's
-// passes ran faster this way than as one program switching on a mode uniform (04's build 479 ms a frame on
-// MetalRoughSpheresNoTextures as one program, 361 ms as five); why was not measured.
+// One program per pass, each holding only its own code (rh_spheres.comp: 2, ot_build.comp: 5): on llvmpipe the tree's
+// passes run faster this way than as one program switching on a mode uniform (04's README, "The object tree").
 void GpuRayHierarchy::compile_spheres(const gpu::ShaderDefines& defines) {
     spheres_ = Program::compute("04_ray_hierarchy/shaders/rh_spheres.comp", defines);
     gpu::ShaderDefines meshes = defines;
@@ -102,8 +101,7 @@ void GpuRayHierarchy::build_tree(const Bounds& bounds) {
     // next level's mode 4 over the same nodes, so those run over the GPU's counts (at 1M triangles the bounds had
     // twice to three times the threads).
     // The prefix groups' worst case is a tree of about n nodes (64 bytes a triangle); where that passes the GPU's
-    // storage limit (llvmpipe: 128 MiB, 2M triangles), every 4 nodes make a group (about n / 3 nodes), as before
-    // 2026-12-05.
+    // storage limit (llvmpipe: 128 MiB, 2M triangles), every 4 nodes make a group (about n / 3 nodes).
     std::vector<std::uint32_t> sizes;   // bounds of each level's nodes
     std::uint64_t total_bound = 0;
     const auto size_levels = [&](std::uint32_t divisor) {

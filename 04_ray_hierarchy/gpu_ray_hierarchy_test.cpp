@@ -373,13 +373,12 @@ TEST(GpuRayHierarchy, TallyCopiesMeasureTheTraceBetweenThem) {
 
 // A batch is traced without a read-back inside it: the GPU sizes every step's dispatches from the counts it wrote
 // itself (the last work group of each step's rh_cull.comp), each step's children in one window. Shadow rays of one
-// light (one group, which the batch's runs name: nothing is read back to find it, one read-back until 2026-12-05):
-// the only read-back is one look at the group mark after the batch (1; until 2026-12-05 one look at the real lengths
-// whenever the CPU's bound of the pairs, x4 a step, passed the window); the group's counts stay on the GPU
-// (rh_tally.comp) until stats() reads them, once (1). The same rays for closest hits: the fold's look at its flag after
-// two rounds is the mark's look too (its rounds and the select's length stay on the GPU). With 64-pair buffers the
-// speculative try runs out of room and the group is traced again, its windows cut from read-back lengths: the same
-// occlusion and counts; the next batch of that size skips the try.
+// light (one group, which the batch's runs name: nothing is read back to find it): the only read-back is one look at
+// the group mark after the batch (1); the group's counts stay on the GPU (rh_tally.comp) until stats() reads them,
+// once (1). The same rays for closest hits: the fold's look at its flag after two rounds is the mark's look too (its
+// rounds and the select's length stay on the GPU). With 64-pair buffers the speculative try runs out of room and the
+// group is traced again, its windows cut from read-back lengths: the same occlusion and counts; the next batch of that
+// size skips the try.
 TEST(GpuRayHierarchy, ABatchIsTracedWithOneReadBackAtItsEnd) {
     gpu::test_context();
     const TraceSetup setup("cornell");
@@ -444,8 +443,8 @@ TEST(GpuRayHierarchy, ABatchIsTracedWithOneReadBackAtItsEnd) {
     EXPECT_EQ(h.syncs * 2, h.fold_rounds) << "a look at the fold's flag per two rounds, the first at the mark too";
 }
 
-// Many groups: shadow rays whose light changes from ray to ray, 150 runs of one ray each (until 2026-12-05 the GPU
-// found them, in two read-backs past 64). Each is traced on its own, and every ray is occluded as it is in one group
+// Many groups: shadow rays whose light changes from ray to ray, 150 runs of one ray each (the batch's runs name them:
+// nothing is read back to find them). Each is traced on its own, and every ray is occluded as it is in one group
 // (the light does not change what a shadow ray hits).
 TEST(GpuRayHierarchy, ABatchOfManyGroupsFindsEveryGroup) {
     gpu::test_context();

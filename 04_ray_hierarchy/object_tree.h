@@ -8,9 +8,9 @@
 //   3. level 1: clusters of up to kClusterSize consecutive sorted triangles; level l > 1: nodes bounding up to
 //      B = kObjectBranching consecutive nodes of level l - 1, up to a single root. The groups follow the codes'
 //      prefixes (group_heads below: the largest subtrees of at most B nodes of the binary radix tree the sorted codes
-//      define, Karras 2012), so a node never spans a jump of the Morton curve: until 2026-12-05 every B consecutive
-//      nodes made one, and a group straddling two distant stretches of the curve bounded the space between them
-//      (TransmissionTest: 268 single-ray node tests a reflection ray, 94 with these groups; docs/benchmarks.md).
+//      define, Karras 2012), so a node never spans a jump of the Morton curve: a group of any B consecutive nodes
+//      could straddle two distant stretches of the curve and bound the space between them (04's README, "The object
+//      tree"; docs/benchmarks.md, "Stage 04: where the node tests go").
 //
 // The traversal then works on pairs (ray node, object node): a pair whose cone-swept sphere misses the object's
 // sphere or box is dropped for every ray and triangle below both; a surviving pair splits one side (see
@@ -19,8 +19,8 @@
 // test.
 //
 // --objects selects the published variants: `triangles` (Roger et al.: the top ray nodes against every triangle),
-// `meshes` (runs of one material as objects, each against the top nodes first: today's object culling, Reis's
-// scheme) and `tree` (this file; the default). The GPU twin is shaders/ot_build.comp and rh_cull.comp.
+// `meshes` (runs of one material as objects, each against the top nodes first: Reis's object culling) and `tree`
+// (this file; the default). The GPU twin is shaders/ot_build.comp and rh_cull.comp.
 #pragma once
 
 #include <cstdint>
@@ -106,9 +106,9 @@ bool rh_ray_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec4
 // [(lo - o) / d, (hi - o) / d] (ends swapped when d < 0; every t or none when d = 0), and it meets the box when the
 // three intervals and (0, tmax] overlap. A sphere is a loose bound for a long, thin or large triangle (its radius is
 // half the longest side, whatever the triangle's width); its box is tight for the axis-aligned walls and thin strips
-// of real scenes (Box.gltf: 6.5 exact tests per ray with the sphere alone, 3.1 with both). The box is padded by RH_PAD
-// of the coordinates' size, the exit by RH_PAD relatively, so that a pair the exact test hits is never culled (its
-// rounding is a few ulps). False for a ray that cannot hit anything, as rh_ray_may_hit; a NaN tmax keeps the pair.
+// of real scenes (04's README, "The cheap tests"). The box is padded by RH_PAD of the coordinates' size, the exit by
+// RH_PAD relatively, so that a pair the exact test hits is never culled (its rounding is a few ulps). False for a ray
+// that cannot hit anything, as rh_ray_may_hit; a NaN tmax keeps the pair.
 bool rh_ray_box_may_hit(glm::vec3 origin, glm::vec3 direction, float tmax, glm::vec3 a, glm::vec3 b, glm::vec3 c);
 // The same against the box [lo, hi] (an object node's). Padded by the box's own size, so a node's test keeps every
 // ray its triangles' tests keep: the box holds theirs, and every step of the test is monotone in the box.
@@ -130,8 +130,8 @@ bool rh_node_box_test(const RhNode& node, glm::vec3 lo, glm::vec3 hi);
 // every direction: always), else the object node. Either choice is exact; a dual-tree traversal keeps both sides of
 // a pair about the same size (a factor of 1). A quarter splits the rays sooner, while their beam is still narrower
 // than the object: single rays then meet the object nodes with their own tests, which know each ray's length (a
-// shadow ray ends at its light) and line, where a node knows neither. Measured on the 25 scenes of scripts/bench
-// (04's README, "The split rule"): leaf pairs + node tests per ray 0.81 of a factor of 1's on average, 0.83 at 1/2.
+// shadow ray ends at its light) and line, where a node knows neither (04's README, "The split rule", measures it on
+// the 25 scenes of scripts/bench).
 constexpr float kSplitRaysWidth = 0.25f;
 bool rh_split_rays(const RhNode& node, glm::vec4 object_sphere);
 

@@ -4,10 +4,10 @@
 //
 // Why a choice: the wavefront queue is already coherent (8x8 pixel tiles in Morton order), so for rays one bounce
 // from the camera a sort can only match it, and its cell boundaries sometimes split neighbours the queue kept
-// together (README.md, "Measured with the object tree": sorting alone lost on 6 of 11 scenes by up to 3% of the
-// leaf pairs). The cost proxy is the level-1 nodes' beam width where they meet the scene: level 1 (B rays) is the
-// side every (ray, object) pair splits down to, so its width decides how many pairs reach the exact test, up to the
-// width of the objects it meets (the cap, order_width_cap below).
+// together (sorting every batch makes more leaf pairs on some scenes: 05's README, "Choosing per batch"). The cost
+// proxy is the level-1 nodes' beam width where they meet the scene: level 1 (B rays) is the side every (ray, object)
+// pair splits down to, so its width decides how many pairs reach the exact test, up to the width of the objects it
+// meets (the cap, order_width_cap below).
 #pragma once
 
 #include <array>
@@ -58,8 +58,8 @@ std::uint64_t order_cost(const std::vector<OrderRay>& rays, const std::vector<st
                          float diagonal, std::uint32_t cap = kOrderNoCap);
 
 // The sorted order is kept only when tighter by more than 1/32 of the queue's width (OC_MARGIN_DENOMINATOR): the
-// width is a proxy of the cost, and a sort that gains less is not worth its passes (builtin:diffuse's shadow batch:
-// 0.9992 of the queue's width, 1.8% more leaf pairs). In double, as on the GPU: exact for sums below 2^53.
+// width is a proxy of the cost, and a sort that gains less is not worth its passes (05's README, "Choosing per
+// batch"). In double, as on the GPU: exact for sums below 2^53.
 constexpr double kOrderMarginDenominator = 32.0;
 inline bool keep_sorted_order(std::uint64_t queue_cost, std::uint64_t sorted_cost) {
     return double(sorted_cost) * kOrderMarginDenominator < double(queue_cost) * (kOrderMarginDenominator - 1.0);

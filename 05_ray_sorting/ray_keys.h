@@ -10,8 +10,9 @@
 //   direction first (reflection, refraction):    [ group : G ][ coarse direction cell : D ][ origin cell : O ]
 //
 //  - group: primary 0, reflection 1, refraction 2, transparency 3, shadow ray towards light l: 3 + l (a batch holds
-//    trace rays or shadow rays, never both). G = the bits max(4, 3 + lights) values need. Rays of different groups never share a key, and groups sort in this order, so the sorted rays of
-//    a group stay in one range (the queues of the wavefront pipeline hold the groups in the same order).
+//    trace rays or shadow rays, never both). G = the bits max(4, 3 + lights) values need. Rays of different groups
+//    never share a key, and groups sort in this order, so the sorted rays of a group stay in one range (the queues
+//    of the wavefront pipeline hold the groups in the same order).
 //  - origin: a virtual grid of CUBIC cells over the scene box: one cell size c on every axis, and per axis as many
 //    bits as its extent needs, b_a = the least b >= 0 with extent_a <= c 2^b (a flat or thin axis gets few bits or
 //    none). c is the least size with b_x + b_y + b_z <= O (and b_a <= 24): the finest cubic grid the budget allows.
@@ -26,20 +27,14 @@
 //    key (Reis's published code computes an azimuth from atan2(d.x, d.x), so its key never sees d.y).
 //  - when G + O + D > 32, the hash's lowest bits give way.
 //
-// Why this layout (local ray/triangle tests of stage 04's hierarchy at 160x120 on llvmpipe; README.md, "Measured"):
-//  - The old key scaled the origin grid per axis to the box (2^(O/3) cells on every axis), so the cells of a flat
-//    scene were flat: builtin:spheres:N's were 1.1 cm in y and 6 to 37 cm in x and z, and the Morton order hopped
-//    between neighbouring objects. With cubic cells the same sorting cut spheres:45/150/450's local tests by 30%,
-//    47% and 30% against queue order.
-//  - The old key put the direction first for reflection and refraction rays with 6 + 6 octahedral bits: rays of one
-//    direction cell from different surfaces became neighbours (whitted's reflections: 1.84 M local tests unsorted,
-//    5.97 M sorted; the hierarchy's mean level-1 node radius 0.10 -> 0.60). Origin first gave 2.31 M. A COARSE
-//    direction cell (2 + 2 bits: 16 cells of the octahedron) above a fine cubic origin code keeps the rays of one
-//    surface together within each of a few broad direction classes (mirror_box's reflection rays, bouncing between six
-//    mirrors, want more: --direction-bits 8; README.md, "Measured").
+// Why this layout (05's README, "Measured: the cubic key against the first key and stage 04", has the figures):
+//  - Cubic cells: a grid scaled per axis to the box gives a flat scene flat cells, and the Morton order then hops
+//    between neighbouring objects.
+//  - Reflection and refraction rays: a fine direction cell above the origin makes rays of one direction from
+//    different surfaces neighbours; a COARSE direction cell (2 + 2 bits: 16 cells of the octahedron) above a fine
+//    cubic origin code keeps the rays of one surface together within each of a few broad direction classes (rays
+//    bouncing between mirrors, as in mirror_box, want more: --direction-bits 8, or --sort auto's fine key).
 //  - Shadow rays towards a point light: the direction follows from the origin, so the origin goes first.
-//  Together (measured): -0.7% to -48.8% local tests against stage 04 on all 11 benchmark scenes; the old key lost
-//  against stage 04 on 6 of them (whitted 156 -> 290 local tests per ray, spheres:450 786 -> 1501, ...).
 //
 // Every step of a key uses only additions, multiplications and comparisons (no division, no sqrt, no atan), which
 // IEEE 754 rounds the same way in C++ and GLSL: keys are equal on both, bit for bit. The layout (make_key_layout)

@@ -107,7 +107,7 @@ TEST(RayKeys, OriginCellsAreCubesAndEachAxisGetsTheBitsItsExtentNeeds) {
         EXPECT_EQ(quantize_axis(1.5f / 128, 0.0f, L.origin_scale, L.origin_bits[a]), 1u);
         EXPECT_EQ(quantize_axis(100.5f / 128, 0.0f, L.origin_scale, L.origin_bits[a]), 100u);
     }
-    // The old per-axis scaling gave every axis the same bits (cells 4 x 1 x 2 times the cube): no longer.
+    // A cube's axes get equal bits; the 4 : 1 : 2 box's do not (equal bits would make its cells 4 x 1 x 2 cubes).
     const RayKeyLayout cube = make_key_layout({-1, -1, -1}, {1, 1, 1}, 30, 12, 1);
     EXPECT_EQ(cube.origin_bits, glm::uvec3(6, 6, 6));
     EXPECT_EQ(cube.cell_size, 2.0 / 64);

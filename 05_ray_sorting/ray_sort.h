@@ -18,8 +18,7 @@
 // batch whose rays fit a storage block fits too.
 //
 // Nothing is read back to the CPU: the chunk count (the sort's length) stays on the GPU, where the radix sort and
-// the decompression read it; the passes are sized for n, its bound. (Until 2026-12-05 each sort read the count
-// back: a wait for the GPU in every batch.)
+// the decompression read it; the passes are sized for n, its bound, so no batch waits for the GPU.
 #pragma once
 
 #include <array>

@@ -14,9 +14,8 @@ enum class SortMode {
 };
 const char* sort_mode_name(SortMode mode);   // "off", "on", "auto"
 
-// What a sort costs in pair tests on llvmpipe (measured 2026-12-06, 05's README "What a sort costs"): about 1 ms a
-// batch (its ~30 dispatches) and 0.3 us a ray, where a pair test costs 84-213 ns, so 4,700-12,000 pairs a batch and
-// 1.4-3.6 a ray. The defaults are below the low ends: a sort is dropped only where it surely does not pay.
+// What a sort costs, in the hierarchy's pair tests, per batch and per ray: the defaults are below the low ends of what
+// llvmpipe measured (05's README, "What a sort costs"), so a sort is dropped only where it surely does not pay.
 constexpr unsigned kSortBatchCost = 4096;
 constexpr unsigned kSortRayCost = 1;
 

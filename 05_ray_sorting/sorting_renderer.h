@@ -51,22 +51,22 @@ private:
     gpu::Buffer order_, fine_order_, sorted_rays_, sorted_results_;
     std::array<SortBatchStats, 2> batch_stats_{};
 
-    // --sort auto across frames. A sort costs about 30 passes whether its order is kept or not (on llvmpipe 2-5 ms
-    // a batch on the benchmark scenes, more than the whole trace of a small one), and a reflection or refraction
+    // --sort auto across frames. A sort costs about 30 passes whether its order is kept or not (on llvmpipe more
+    // than the whole trace of a small scene: 05's README, "Remembering the choice"), and a reflection or refraction
     // batch is sorted twice to be measured; from one frame to the next a batch's rays come from the same surfaces,
     // camera and lights, so the order that won stays the winner. So the k-th batch of a kind remembers which order
     // won (recorded on the GPU, read with the frame's statistics: no extra read-back), and for the next
     // probe_every - 1 frames takes it unmeasured: the queue's order (traced exactly as stage 04 traces it, no sort)
     // or the one sorted order that won (one sort, no measure); then it is measured again.
     //
-    // The measure is a proxy (order_choice.h: the level-1 nodes' width), and a proxy can be wrong by a little (a
-    // sort kept on spheres:4 tested 0.1% more pairs than the queue's order). So a sort the measure keeps is checked
-    // against the real thing: the batch's pairs tested (node tests + leaf pairs, GpuRayHierarchy::tally_pairs) are
-    // recorded in the measured frame, the next frame traces the batch in the queue's order and records them again,
-    // and the sort is remembered only if it tested fewer, by more than the sort costs (--sort-batch-cost,
-    // --sort-ray-cost: order_choice.h, sort_pays). On a still scene the remembered order then never tests
-    // more pairs than stage 04, by construction; the check costs one frame's gain where the sort wins (the checked
-    // frame is stage 04's, with no sort). With probe_every < 3 no check is made (no frame would be left to use it).
+    // The measure is a proxy (order_choice.h: the level-1 nodes' width), and a proxy can be wrong by a little (05's
+    // README, "Checking a kept sort"). So a sort the measure keeps is checked against the real thing: the batch's
+    // pairs tested (node tests + leaf pairs, GpuRayHierarchy::tally_pairs) are recorded in the measured frame, the
+    // next frame traces the batch in the queue's order and records them again, and the sort is remembered only if it
+    // tested fewer, by more than the sort costs (--sort-batch-cost, --sort-ray-cost: order_choice.h, sort_pays). On a
+    // still scene the remembered order then never tests more pairs than stage 04, by construction; the check costs one
+    // frame's gain where the sort wins (the checked frame is stage 04's, with no sort). With probe_every < 3 no check
+    // is made (no frame would be left to use it).
     static constexpr int kCheckOrder = 3;   // remembered_order: trace in the queue's order, to check a kept sort
     struct BatchMemory {
         int order = -1;            // the order to take: 0 queue, 1 sorted, 2 fine; -1 none yet

@@ -155,8 +155,8 @@ struct SortCosts {
 constexpr SortCosts kAnySaving{0, 0};   // a kept sort stays if it saves any pair: the cycle's own tests
 std::vector<FrameResult> auto_frames(const std::string& name, int count, unsigned probe_every, FrameResult& reference,
                                      SortCosts costs = {}) {
-    // material_maps as lit before its glowing panel became an area light: its punctual light's shadow batches are
-    // the ones whose kept sorts a check drops.
+    // material_maps with its glowing panel not an area light (--area-lights off): its punctual light's shadow
+    // batches are the ones whose kept sorts a check drops.
     FlattenOptions options;
     if (name == "material_maps") options.area_lights = AreaLightMode::Off;
     const Scene s = flatten(make_builtin_scene(name), options);
@@ -178,8 +178,8 @@ std::vector<FrameResult> auto_frames(const std::string& name, int count, unsigne
 // queue's order did; frame 5 measures again, frame 6 checks again. Every frame is the same frame as --sort off (image
 // and hits); the hierarchy's counts repeat with the cycle, and the remembered frames test no more pairs than either
 // the measured frame or stage 04 (absorption and material_maps keep some sorts, drop some and leave some batches in
-// the queue's order; mirror_box did until stage 04's split rule of 2026-12-06, and now drops none). The sort's cost
-// is 0 here (any saving keeps a sort): at 48x36 no sort saves what its passes cost, and the cycle is the same with it.
+// the queue's order). The sort's cost is 0 here (any saving keeps a sort): at 48x36 no sort saves what its passes
+// cost, and the cycle is the same with it.
 TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
     gpu::test_context();
     for (const char* name : {"absorption", "material_maps"}) {
@@ -248,8 +248,7 @@ TEST(RaySortingRenderer, AutoTakesTheOrderThatWonUnmeasuredUntilItsNextProbe) {
 
 // Sorting never loses, once checked: from the third frame on (measured, checked), every scene's frame tests at most
 // the pairs stage 04's does. On spheres:12 at this size the measure keeps a shadow sort that tests more pairs in
-// frame 1 (so did spheres:4's and cornell's until stage 04's changes of 2026-12-06, the ray nodes' box test and the
-// split rule): the check drops it, and frame 3 is stage 04's.
+// frame 1: the check drops it, and frame 3 is stage 04's.
 TEST(RaySortingRenderer, AfterTheCheckSortingNeverTestsMorePairsThanTheQueueOrder) {
     gpu::test_context();
     for (const char* name :

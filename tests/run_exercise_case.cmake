@@ -6,8 +6,8 @@
 # with the solution put back, one plausible wrong answer (a mutant of tests/mutants: 03.dda_cell_end's < for <=) is
 # graded on its images, counts and hits with heatmaps: exit 1, that exercise failed with the differing counts or
 # pixels, the other one passed or points at it, and the report loads in a real browser with every image.
-# (--images-only keeps this test to a build of the stages, as before the unit tests joined the grading; grading
-# with the unit tests is scripts/mutants.)
+# (--images-only keeps this test to a build of the stages, without the unit tests; grading with the unit tests is
+# scripts/mutants.)
 # (Every mutant failing, and the solution passing, is scripts/mutants: mutants.every_wrong_answer_fails.)
 # One working copy and build folder serve every stage: each stage's copy is synced into it file by file (only the
 # files that differ are written), so a stage costs an incremental build, not a whole one.

@@ -13,12 +13,12 @@
 // (rh_children.glsl). A pair's place inside its work group of 64 comes from the shared-memory atomic that sums the
 // group, and the group's first place among the chunk's children from one atomic on the children's count
 // (rh_info[rh_children_slot]), which thereby ends as their number: no scan, no pass between this one and
-// rh_expand.comp (until 2026-12-05 a scan of the groups' sums placed them, up to three more dispatches per step).
+// rh_expand.comp (a scan of the groups' sums would cost up to three more dispatches per step).
 // Both atomics hand out places in whatever order the threads and groups run: the order of the pairs changes nothing
 // the traversal computes, the hits, the occlusion or the counts. With RH_CULL_WRITES_CHILDREN the last group to finish
 // also writes the next step's indirect dispatch from the children's final count (the "last block" of a reduction:
-// every group counts itself done after its add, so the group that counts last has seen every add), which until
-// 2026-12-05 was a pass of its own (rh_args.comp), one dispatch more per step.
+// every group counts itself done after its add, so the group that counts last has seen every add): no rh_args.comp
+// pass, one dispatch less per step.
 // In a speculative batch (gpu_ray_hierarchy.cpp, trace) every step writes its children this way, into one
 // window of rh_window_room pairs: children past it are not written, the group is marked (rh_mark_overflow) and the
 // pass leaves the next step at most the window (rh_chunk_count), and the passes after the mark test nothing more.
@@ -63,7 +63,7 @@ uniform uint rh_children_slot;     // RH_INFO_STEP_COUNT + step + 1: the childre
 shared uint rh_group_sum;
 // The group's counts per ray level, four 8-bit fields in one word so that a pair adds them with one shared atomic
 // (a work group has 64 pairs, so no field passes 255): pairs tested, those kept, and of them the ones whose object
-// side is an object node (not a triangle). On llvmpipe the four atomics a pair made before took a quarter of the pass.
+// side is an object node (not a triangle); fewer atomics, a faster pass (04's README, "The traversal").
 shared uint rh_level_counts[32];
 #define RH_COUNT_IN 1u
 #define RH_COUNT_OUT (1u << 8)

@@ -30,8 +30,7 @@ uniform uint rh_hit_room;       // the hit list's entries (a speculative batch m
 #endif
 
 // The group's leaf pairs, box tests and exact tests, 8-bit fields of one word (64 pairs a group), so that a pair adds
-// its counts with one shared atomic instead of three (as in rh_cull.comp, where separate ones took about a quarter
-// of the pass on llvmpipe).
+// its counts with one shared atomic instead of three, as in rh_cull.comp (04's README, "The traversal").
 shared uint rh_group_counts;
 #define RH_COUNT_LEAF 1u
 #define RH_COUNT_BOX (1u << 8)

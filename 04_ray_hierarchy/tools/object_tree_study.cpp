@@ -7,8 +7,8 @@
 //   tree          the stage's object tree (groups at the Morton codes' prefixes), over the ray's whole length (what
 //                 level 0 of the traversal costs);
 //   to hit        the same with tmax cut to the ray's closest hit (what a traversal that knew it would save);
-//   every 4       the tree grouped every 4 nodes whatever the codes (the stage's until 2026-12-05, and its choice on
-//                 a GPU whose storage limit the prefix groups' worst case would pass);
+//   every 4       the tree grouped every 4 nodes whatever the codes (the stage's choice on a GPU whose storage
+//                 limit the prefix groups' worst case would pass);
 //   median        a 4-wide tree split top-down at the median of the widest centroid axis (two splits a node,
 //                 leaves of at most 4 triangles, boxes of their vertices, spheres around the boxes).
 //     build/bin/04_ray_hierarchy --scene S --width 160 --height 120 --dump-hits h.bin --out o.png

@@ -23,12 +23,10 @@
 #define OC_UNITS 4096.0
 #define OC_MAX_WIDTH 4.0
 // The distance at which the width is taken, as a part of the diagonal: where a level-1 node meets the object nodes
-// it is split against, which the object tree keeps near (05's README, "Choosing per batch": 1, 1/4, 1/8 and 1/32
-// measured on the benchmark scenes; 1/8 never lost).
+// it is split against, which the object tree keeps near (chosen by measurement: 05's README, "Choosing per batch").
 #define OC_REACH 0.125
 // The sorted order is kept when its sum is below (1 - 1/32) of the queue's: the widths are a proxy, and a batch whose
-// sort gains less (builtin:diffuse's shadow rays: 0.9992 of the queue's width, and 1.8% more leaf pairs sorted) is
-// not worth its passes.
+// sort gains less is not worth its passes (it may even test more leaf pairs: 05's README, "Choosing per batch").
 #define OC_MARGIN_DENOMINATOR 32.0lf
 
 // radius + L sin(spread) (rh_split_rays' width), L = min(longest ray, OC_REACH diagonal); an empty node is 0 wide,
@@ -47,8 +45,7 @@ uint oc_fixed_width(RhNode node, float longest, float diagonal) {
 // tree's clusters, mesh objects or triangles), from the sum of their radii in width units. A ray node wider than the
 // leaf it meets is split into its rays there (rh_split_rays splits one a quarter as wide), so how much wider it is
 // changes nothing below; without the cap a few very wide nodes (rays from both sides of a silhouette) outweigh the
-// rest, and the sort they favour can cost more (05's README, "Choosing per batch": builtin:spheres:450's shadow rays,
-// +3.7% leaf pairs and node tests with the uncapped width). No leaves: no cap.
+// rest, and the sort they favour can cost more (05's README, "Choosing per batch"). No leaves: no cap.
 uint oc_radius_units(float radius, float diagonal) {
     precise float units = radius / diagonal * OC_UNITS;
     if (!(units >= 0.0)) return 0u;   // an empty sphere (radius < 0) or NaN

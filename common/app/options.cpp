@@ -140,7 +140,7 @@ glm::ivec2 parse_pixel(const std::string& text) {
 
 glm::vec3 parse_background(const std::string& text) {
     glm::vec3 c(0.0f);
-    if (text == "black") return c;   // what glTF files got before the default world
+    if (text == "black") return c;   // rays that leave the scene bring back nothing
     std::size_t start = 0;
     for (int k = 0; k < 3; ++k) {
         const std::size_t comma = text.find(',', start);

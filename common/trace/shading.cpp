@@ -97,7 +97,7 @@ SurfaceCoefficients surface_coefficients(const Material& m, const SurfaceTexels&
     s.f0_dielectric = glm::min(glm::vec3(1.0f), r0 * r0 * m.specular * m.specular_color);
     // Lambertian: the dielectric's diffuse part, plus the part of a metal's reflectance too rough for a mirror ray
     // (1 - smoothness): Whitted traces no glossy lobe, so a rough metal reflects its colour diffusely instead of not at
-    // all (docs/shading.md). For metallic 0 the second term is 0 and kd is what it always was, to the bit.
+    // all (docs/shading.md). For metallic 0 the second term is 0 and kd is the dielectric's part alone, to the bit.
     s.diffuse = s.base * s.dielectric * (1.0f - s.transmission) + s.base * (metallic * (1.0f - s.smoothness));
     s.mirror = s.base * metallic * s.smoothness;
     // Highlight: Blinn-Phong lobe whose exponent follows roughness (alpha = roughness^2, exponent 2/alpha^2 - 2);

@@ -31,8 +31,8 @@ constexpr float kAmbientGround = 0.4f;
 constexpr float kAmbientRise = 1.2f;
 
 // The ambient light a surface of diffuse colour `diffuse` with unit shading normal n reflects. Constant:
-// kAmbient * diffuse (the built-in scenes, bit for bit what they always had); none: 0. GLSL twin: ambient_light in
-// shading.glsl, compiled for the scene's model only.
+// kAmbient * diffuse (the built-in scenes' default); none: 0. GLSL twin: ambient_light in shading.glsl, compiled for
+// the scene's model only.
 inline glm::vec3 ambient_light(AmbientModel model, const glm::vec3& diffuse, const glm::vec3& n) {
     switch (model) {
     case AmbientModel::None: return glm::vec3(0.0f);

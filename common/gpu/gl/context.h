@@ -35,8 +35,8 @@ struct GpuOptions {
 // command line.
 void add_gpu_options(CLI::App& app, GpuOptions& options);
 
-// Window mode: what the user did with mouse and keyboard since the last take_input() (the viewer's input, gpu/viewer.h;
-// GLFW's own codes stay in context_glfw.cpp).
+// Window mode: what the user did with mouse and keyboard since the last take_input() (the viewer's input,
+// common/gpu/viewer/viewer.h; GLFW's own codes stay in context_glfw.cpp).
 struct WindowInput {
     glm::vec2 orbit_drag{0.0f};   // cursor movement in window pixels with the left button held
     glm::vec2 pan_drag{0.0f};     // ... with the right or middle button held, or shift + left

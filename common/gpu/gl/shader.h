@@ -79,7 +79,7 @@ public:
     Program& operator=(const Program&) = delete;
     ~Program();
 
-    // A compute program from a file (relative to shader_root(), e.g. "03_uniform_grid/shaders/trace.comp").
+    // A compute program from a file (relative to shader_root(), e.g. "03_uniform_grid/shaders/grid_count.comp").
     static Program compute(const std::filesystem::path& file, const ShaderDefines& defines = {});
     static Program compute_source(const std::string& name, const std::string& text, const ShaderDefines& defines = {});
     // Any set of stages: {{GL_VERTEX_SHADER, "02_raster_hybrid/shaders/gbuffer.vert"}, {GL_FRAGMENT_SHADER, ...}}.

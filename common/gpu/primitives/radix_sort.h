@@ -13,9 +13,9 @@
 // Why 6 bits and 64 threads of 64 keys: the scatter's rank table (digits x threads) must fit shared memory (32 KiB on
 // llvmpipe: 64 x 64 uints is 16 KiB), and a tile's threads share its barriers; on llvmpipe a work group runs on one
 // core, so fewer threads each with more keys cost fewer barrier rounds, and 6-bit digits take a 32-bit key in 6
-// passes instead of 8. Against 4 bits and 256 threads of 16 keys (docs/benchmarks.md, "GPU radix sort"): 1.1-2.9x
-// faster from 1K to 4M keys; tiles of 2048 keys were slower, of 8192 no faster. Chosen on llvmpipe, where CI and
-// most machines here run; on a hardware GPU, where 64-thread groups hide less memory latency, not yet measured.
+// passes instead of 8 (docs/benchmarks.md, "GPU radix sort", compares it with 4-bit digits, 256 threads of 16 keys
+// and other tile sizes). Chosen on llvmpipe, where CI and most machines here run; a hardware GPU, where 64-thread
+// groups hide less memory latency, may want another shape.
 //
 // Used by stage 03 (sorting (cell, triangle) pairs), stage 04 (the object tree's Morton codes) and stage 05 (ray
 // chunks). Needs a current context when constructed; calls only enqueue GPU work and end with a memory barrier, like

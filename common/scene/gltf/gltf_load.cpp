@@ -220,8 +220,8 @@ Light Loader::light(const tinygltf::Light& l, std::size_t index) {
     out.inner_cone = value(l.spot.innerConeAngle, name + ": innerConeAngle", 0.0f, quarter_turn);
     out.outer_cone = value(l.spot.outerConeAngle, name + ": outerConeAngle", 0.0f, quarter_turn);
     // KHR_lights_punctual: the inner cone lies inside the outer one. Not so, the falloff between them has no width;
-    // the inner angle becomes the float just below the outer one (a hard edge at the outer cone, the light the
-    // shaders' ramp gave before, and a valid cone when the scene is exported).
+    // the inner angle becomes the float just below the outer one (a hard edge at the outer cone, and a valid cone
+    // when the scene is exported).
     if (out.type == LightType::Spot && out.inner_cone >= out.outer_cone && out.inner_cone > 0.0f) {
         warn(name + ": innerConeAngle " + describe(out.inner_cone) + " is not below outerConeAngle " +
              describe(out.outer_cone) + "; the spot's edge is hard at the outer cone");

@@ -1,6 +1,6 @@
 #version 450 core
-// Shade pass: one thread per hit in wf_hits (docs/shading.md, "The colour of a hit"):
-//   C = emissive + 0.03 kd + sum over lights of f E [unshadowed] + kr C(reflected) + kt C(refracted)
+// Shade pass: one thread per hit in wf_hits (docs/shading.md, "Local illumination"):
+//   C = emissive + A(N) kd + sum over lights of f E [unshadowed] + kr C(reflected) + kt C(refracted)
 // Each term goes to the pixel weighted by the path's weight. The light terms wait for their shadow ray
 // (ENABLE_SHADOWS): the shadow pass adds them when nothing blocks the light. kr C(reflected) and kt C(refracted)
 // become rays of the next bounce (ENABLE_REFLECTIONS, ENABLE_REFRACTIONS), spawned while depth < max_depth and the
