@@ -1,7 +1,7 @@
-// Test support for the hard-case suites: the meshes and rays that the CPU suites (beside the header each covers:
-// common/trace/intersect_watertight_test.cpp, offset_test.cpp, shading_hard_cases_test.cpp,
-// whitted_hard_cases_test.cpp) and their GLSL twin (common/gpu/glsl_twins/hard_cases_glsl_test.cpp) share, so both run
-// the same cases:
+// Test support for the hard-case suites: the meshes and rays that the CPU suites (through stage 01's brute-force
+// tracer: 01_naive/intersect_watertight_test.cpp, offset_test.cpp, shading_hard_cases_test.cpp,
+// whitted_hard_cases_test.cpp; the ray/triangle tests alone: common/trace/intersect_inputs_test.cpp) and their GLSL
+// twin (common/gpu/glsl_twins/hard_cases_glsl_test.cpp) share, so both run the same cases:
 //   closed meshes       closed_sphere(), closed_cube() and their topology (shared vertices and edges by position)
 //   watertight rays     rays_at_shared_vertices_and_edges(): aimed exactly at the shared vertices and edges
 //   placement           sphere_at() / thin_slab_at(): a scene at coordinates OFFSET and of size SCALE, and where
@@ -25,6 +25,7 @@
 
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/scene.h"
+#include "intersect.h"
 #include "offset.h"
 #include "ray.h"
 

@@ -1,5 +1,6 @@
-// Ray/triangle intersection basics for both methods and both precisions. The hard cases (shared edges and vertices,
-// NaN input) are in intersect_watertight_test.cpp and whitted_hard_cases_test.cpp.
+// Ray/triangle intersection basics for both methods and both precisions. The hard cases: degenerate and NaN input in
+// intersect_inputs_test.cpp; shared edges and vertices, through stage 01's brute-force tracer, in
+// 01_naive/intersect_watertight_test.cpp.
 #include <gtest/gtest.h>
 
 #include "intersect.h"

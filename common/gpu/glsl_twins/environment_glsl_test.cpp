@@ -1,8 +1,9 @@
 // The environment on the GPU (environment.glsl, environment_texture.h):
 //  - the GLSL lookup is the C++ one's twin, bit for bit (like glsl_twins_test.cpp: RT_GLSL_TWIN_ULPS loosens it on a
 //    GPU without IEEE division and sqrt), at the seam (u = 0 / 1), the poles, texel borders and under rotation;
-//  - it costs nothing when unused: no RT_ENVIRONMENT define, no environment texture, the same programs;
 //  - the map is uploaded once, not once per frame, and a map larger than GL_MAX_TEXTURE_SIZE is refused.
+// That it costs nothing when unused (no RT_ENVIRONMENT define, no environment texture, the same programs) is checked
+// on a frame as stage 02 renders it: 02_raster_hybrid/environment_frame_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,12 +12,10 @@
 #include <memory>
 #include <random>
 
-#include "common/app/pixel_samples.h"
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
 #include "common/trace/environment.h"
 #include "common/trace/shading.h"
-#include "02_raster_hybrid/gbuffer.h"
 #include "common/gpu/testing/glsl_test_harness.h"
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
@@ -140,51 +139,6 @@ void test_main() { out_vec3(0, rt_sample_environment(in_vec2(0))); }
         ASSERT_LE(ulp_diff(expected[i], word_f(out, i)), ulp_bound()) << "sample " << i / 3 << " channel " << i % 3;
     // The seam is continuous: u = 0 and u = 1 read the same two columns.
     EXPECT_EQ(sample_environment(e, {0.0f, 0.3f}), sample_environment(e, {1.0f, 0.3f}));
-}
-
-// One frame as stage 02 renders it, returning the wavefront's defines and programs.
-struct Frame {
-    ShaderDefines defines;
-    std::vector<std::string> programs;
-    Image image;
-};
-Frame render(const Scene& scene, GpuScene& gpu_scene) {
-    RenderSettings settings;
-    settings.width = 40;
-    settings.height = 30;
-    settings.effects = analyze_effects(scene);
-    gpu_scene.upload(scene);
-    GBuffer gbuffer;
-    Wavefront wavefront(Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
-    wavefront.begin_frame(gpu_scene, settings);
-    gbuffer.render(gpu_scene, scene.camera, scene.bounds, settings.width, settings.height, glm::vec2(0.5f));
-    gpu_scene.bind();
-    gbuffer.shade_sample(wavefront, glm::vec2(0.5f));
-    RayCounters counters;
-    Frame f{wavefront.defines(), wavefront.programs(), wavefront.finish_frame(counters)};
-    return f;
-}
-
-TEST(EnvironmentCost, WithoutAMapNothingIsCompiledOrBoundAndMissesAreTheBackground) {
-    test_context();
-    Scene scene = flatten(make_builtin_scene("whitted"), {});
-    GpuScene gpu_scene;
-    const Frame plain = render(scene, gpu_scene);
-    EXPECT_EQ(plain.defines.count("RT_ENVIRONMENT"), 0u);
-    EXPECT_FALSE(gpu_scene.has_environment());
-    EXPECT_EQ(gpu_scene.environment().uploads(), 0);
-    // With a map: the define, the texture, the same programs (the lookup is inside them), and another image.
-    scene.environment = test_environment(0.0f);
-    GpuScene with_map;
-    const Frame mapped = render(scene, with_map);
-    EXPECT_EQ(mapped.defines.count("RT_ENVIRONMENT"), 1u);
-    EXPECT_TRUE(with_map.has_environment());
-    EXPECT_EQ(mapped.programs, plain.programs);
-    EXPECT_NE(std::memcmp(mapped.image.pixels.data(), plain.image.pixels.data(),
-                          plain.image.pixels.size() * sizeof(glm::vec3)), 0);
-    // The top-left pixel sees the sky: without a map the background (through the fixed-point sum), with one the map.
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(plain.image.at(0, 0)[c], scene.background[c], 1e-6f);
-    EXPECT_GT(glm::length(mapped.image.at(0, 0) - scene.background), 0.1f);
 }
 
 TEST(EnvironmentCost, TheMapIsUploadedOnceForManyFrames) {

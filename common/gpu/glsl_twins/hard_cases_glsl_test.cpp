@@ -1,8 +1,9 @@
 // The numerically hard cases for the GLSL twins (common/shaders/): the same cases as the CPU suites
-// (common/trace/intersect_watertight_test.cpp, offset_test.cpp, shading_hard_cases_test.cpp and
-// whitted_hard_cases_test.cpp), on the same meshes and rays (common/trace/hard_cases.h), asserted on what the
-// GLSL routines compute in compute shaders (the GLSL test harness; llvmpipe in CI). glsl_twins_test.cpp checks that
-// GLSL and C++ agree on sample inputs; this file checks the properties themselves on the GPU side:
+// (01_naive/intersect_watertight_test.cpp, offset_test.cpp, shading_hard_cases_test.cpp and
+// whitted_hard_cases_test.cpp, and common/trace/intersect_inputs_test.cpp), on the same meshes and rays
+// (common/trace/hard_cases.h), asserted on what the GLSL routines compute in compute shaders (the GLSL test harness;
+// llvmpipe in CI). glsl_twins_test.cpp checks that GLSL and C++ agree on sample inputs; this file checks the
+// properties themselves on the GPU side:
 //
 //   Watertight        rays aimed exactly at shared vertices and edges of closed meshes never slip through
 //                     intersect_watertight (looped over every triangle of the mesh, uploaded as a GpuScene); the miss
@@ -26,7 +27,6 @@
 #include <string>
 #include <vector>
 
-#include "01_naive/brute_force_tracer.h"
 #include "common/trace/hard_cases.h"
 #include "common/trace/intersect.h"
 #include "common/trace/offset.h"
@@ -71,9 +71,24 @@ struct GlslMisses {
     double rate(std::size_t misses) const { return rays ? double(misses) / double(rays) : 0.0; }
 };
 
-// Runs the CPU suite's float rays for `s` through GLSL. A ray that some method misses is checked with the CPU suite's
-// oracle (the same ray in long double, watertight): one that misses there too passes outside the mesh (its rounded
-// origin turned its aim) and is left out, for both methods, as on the CPU.
+// The CPU suite's oracle (01_naive/intersect_watertight_test.cpp asks stage 01's brute-force tracer the same): does
+// the ray, converted exactly to long double (64-bit mantissa), hit any triangle of `s` with the watertight test?
+bool exact_watertight_hit(const Scene& s, const Ray<float>& ray) {
+    using Exact = long double;
+    const Ray<Exact> r{Vec3<Exact>(ray.origin), Vec3<Exact>(ray.direction)};
+    const WatertightRay<Exact> w(r.direction);
+    for (std::size_t i = 0; i < s.positions.size() / 3; ++i) {
+        Exact t, u, v;
+        if (intersect_watertight(r, w, Vec3<Exact>(s.positions[3 * i]), Vec3<Exact>(s.positions[3 * i + 1]),
+                                 Vec3<Exact>(s.positions[3 * i + 2]), t, u, v))
+            return true;
+    }
+    return false;
+}
+
+// Runs the CPU suite's float rays for `s` through GLSL. A ray that some method misses is checked with the oracle
+// above: one that misses there too passes outside the mesh (its rounded origin turned its aim) and is left out, for
+// both methods, as on the CPU.
 GlslMisses glsl_misses(const Scene& s, const WatertightRayCounts& counts) {
     const std::vector<Ray<float>> rays = rays_at_shared_vertices_and_edges<float>(
         s, counts.directions_per_vertex, counts.points_per_edge, counts.directions_per_point, kWatertightSeed);
@@ -84,19 +99,12 @@ GlslMisses glsl_misses(const Scene& s, const WatertightRayCounts& counts) {
     Words in;
     for (const Ray<float>& r : rays) in << r.origin << r.direction;
     const std::vector<std::uint32_t> out = h.run(in.words, rays.size(), 6, 2, [&] { gpu.bind(); });
-    using Exact = long double;
-    const BruteForceTracer<Exact> oracle(s, IntersectMethod::Watertight);
-    RayCounters counters;
     GlslMisses m;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const bool moller_missed = out[2 * i] == 0, watertight_missed = out[2 * i + 1] == 0;
-        if (moller_missed || watertight_missed) {
-            Hit<Exact> exact;
-            const Ray<Exact> r{Vec3<Exact>(rays[i].origin), Vec3<Exact>(rays[i].direction)};
-            if (!oracle.closest(r, exact, counters)) {
-                ++m.outside;
-                continue;
-            }
+        if ((moller_missed || watertight_missed) && !exact_watertight_hit(s, rays[i])) {
+            ++m.outside;
+            continue;
         }
         ++m.rays;
         m.moller += moller_missed ? 1 : 0;
@@ -199,7 +207,7 @@ void test_main() {
 }
 )";
 
-// The CPU suite's primaries (spawn_from_sphere in hard_cases_test.cpp): aimed at random interior points of random
+// The CPU suite's primaries (spawn_from_sphere in 01_naive/offset_test.cpp): aimed at random interior points of random
 // triangles of the sphere from outside. Returns the tallies of both offset methods (0 epsilon, 1 robust).
 std::array<SpawnTallies, 2> glsl_spawn_from_sphere(GlslTestHarness& h, GpuScene& gpu, double offset, double scale,
                                                    int primaries, std::size_t& primary_misses) {

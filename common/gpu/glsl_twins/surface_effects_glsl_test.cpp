@@ -15,7 +15,6 @@
 #include "common/trace/absorption.h"
 #include "common/trace/normal_map.h"
 #include "common/trace/texture_transform.h"
-#include "02_raster_hybrid/brute_force_traversal.h"
 #include "common/gpu/testing/glsl_test_harness.h"
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"

@@ -1,7 +1,7 @@
-// The spawn offsets (offset.h): shadow, reflection and refraction rays spawned from a hit never re-hit the surface
-// they leave with the robust offset, at coordinates from 1e-4 to 1e6 and scales from 1e-3 to 1e3; the fixed epsilon
-// fails where its 1e-4 is below a float step or above a wall's thickness (both measured and printed: run
-// build/tests/unit_tests_common_trace --gtest_filter='SelfIntersection*').
+// The spawn offsets (offset.h) with stage 01's brute-force tracer: shadow, reflection and refraction rays spawned from
+// a hit never re-hit the surface they leave with the robust offset, at coordinates from 1e-4 to 1e6 and scales from
+// 1e-3 to 1e3; the fixed epsilon fails where its 1e-4 is below a float step or above a wall's thickness (both
+// measured and printed: run build/tests/unit_tests_01_naive --gtest_filter='SelfIntersection*').
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "01_naive/brute_force_tracer.h"
-#include "hard_cases.h"
-#include "intersect.h"
-#include "offset.h"
-#include "shading.h"
-#include "whitted.h"
+#include "common/trace/hard_cases.h"
+#include "common/trace/intersect.h"
+#include "common/trace/offset.h"
+#include "common/trace/shading.h"
+#include "common/trace/whitted.h"
 
 namespace rt {
 namespace {

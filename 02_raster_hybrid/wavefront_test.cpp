@@ -1,4 +1,5 @@
-// The shared wavefront pipeline (wavefront.h) as stage 02 runs it (G-buffer primaries, brute-force traversal):
+// The shared wavefront pipeline (common/gpu/pipeline/wavefront.h) as stage 02 runs it, with G-buffer primaries and
+// the brute-force traversal:
 //  - ordered queues: two runs give identical hit records (the queues' contents, in queue order), counts, per-pixel
 //    tests and images, and primary hits come in 8x8 tiles, Morton order inside;
 //  - the radiance sum holds photometric values (a 1e7 cd lamp, a 1e5 lux sun) and agrees with stage 01, saturates
@@ -20,10 +21,10 @@
 #include "common/scene/effects.h"
 #include "common/trace/whitted.h"
 #include "02_raster_hybrid/gbuffer.h"
-#include "gpu_scene.h"
+#include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "02_raster_hybrid/brute_force_traversal.h"
-#include "wavefront.h"
+#include "common/gpu/pipeline/wavefront.h"
 #include "tests/stage_test_fixture.h"
 
 namespace rt {

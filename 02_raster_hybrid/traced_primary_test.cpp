@@ -8,9 +8,9 @@
 
 #include "01_naive/brute_force_tracer.h"
 #include "common/trace/hard_cases.h"
-#include "gpu_scene.h"
+#include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
-#include "wavefront.h"
+#include "common/gpu/pipeline/wavefront.h"
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/trace/whitted.h"
 #include "tests/hit_compare.h"

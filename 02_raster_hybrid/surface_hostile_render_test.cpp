@@ -12,9 +12,9 @@
 #include "01_naive/brute_force_tracer.h"
 #include "common/trace/whitted.h"
 #include "02_raster_hybrid/gbuffer.h"
-#include "gpu_scene.h"
+#include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
-#include "wavefront.h"
+#include "common/gpu/pipeline/wavefront.h"
 
 namespace rt {
 namespace {

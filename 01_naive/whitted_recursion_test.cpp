@@ -1,14 +1,15 @@
-// Whitted's secondary rays (exercise 01.whitted_recursion grades against these): a reflection ray per mirror bounce
-// up to --max-depth, refraction only where Snell's law has a solution, the cut-off on the path's weight, the ray
-// counts per kind, the path numbers of the ray tree (2p reflection, 2p + 1 refraction) and the side of the surface
-// each child starts on. Scenes of one or two squares, so every count is known by hand.
+// Whitted's secondary rays (common/trace/whitted.h), traced with stage 01's brute force (exercise 01.whitted_recursion
+// grades against these): a reflection ray per mirror bounce up to --max-depth, refraction only where Snell's law has a
+// solution, the cut-off on the path's weight, the ray counts per kind, the path numbers of the ray tree (2p
+// reflection, 2p + 1 refraction) and the side of the surface each child starts on. Scenes of one or two squares, so
+// every count is known by hand.
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "common/scene/effects.h"
 #include "01_naive/brute_force_tracer.h"
-#include "whitted.h"
+#include "common/trace/whitted.h"
 
 namespace rt {
 namespace {

@@ -1,8 +1,9 @@
-// The whole integrator (whitted.h) on inputs that must not break it: degenerate triangles, NaN/Inf vertices and
-// NaN/zero ray directions give no crash, no hang and no NaN or Inf pixel (by hand and through a glTF file); and
-// builtin:far (the Whitted scene moved by 1e4) renders like builtin:whitted with the robust offset, while a fixed
-// epsilon shows acne there. Every render is checked for non-finite pixels; the golden tests do the same for every
-// stage (tests/run_golden.cmake renders an EXR and tests/image_compare fails on any non-finite pixel).
+// The whole integrator (whitted.h) with stage 01's brute-force tracer on inputs that must not break it: degenerate
+// triangles, NaN/Inf vertices and NaN/zero ray directions give no crash, no hang and no NaN or Inf pixel (by hand and
+// through a glTF file); and builtin:far (the Whitted scene moved by 1e4) renders like builtin:whitted with the robust
+// offset, while a fixed epsilon shows acne there. Every render is checked for non-finite pixels; the golden tests do
+// the same for every stage (tests/run_golden.cmake renders an EXR and tests/image_compare fails on any non-finite
+// pixel). The ray/triangle tests alone on the same broken inputs: common/trace/intersect_inputs_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,55 +19,16 @@
 #include "common/scene/effects.h"
 #include "common/scene/gltf/gltf_io.h"
 #include "common/scene/scene.h"
-#include "hard_cases.h"
-#include "intersect.h"
-#include "offset.h"
-#include "shading.h"
-#include "whitted.h"
+#include "common/trace/hard_cases.h"
+#include "common/trace/intersect.h"
+#include "common/trace/offset.h"
+#include "common/trace/shading.h"
+#include "common/trace/whitted.h"
 
 namespace rt {
 namespace {
 
 using namespace hard_cases;   // the meshes, rays and placements shared with the GLSL suite
-
-template <class T> void expect_broken_inputs_never_hit() {
-    const Vec3<T> a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);   // a valid triangle
-    const Ray<T> good{{0.2, 0.2, 1}, {0, 0, -1}};
-    const Ray<T> diagonal{{0.5, 0.5, 1}, {0, 0, -1}};     // aimed at the degenerate triangles' line
-    for (IntersectMethod m : kMethods) {
-        for (const TriangleCase<T>& tri : broken_triangles<T>())
-            for (const Ray<T>& ray : {good, diagonal}) {
-                T t = 7, u = 7, v = 7;
-                EXPECT_FALSE(intersect_triangle(m, ray, tri.a, tri.b, tri.c, t, u, v))
-                    << name_of(m) << ", " << precision_name<T>() << ": " << tri.name << " gave t " << t;
-            }
-        for (const auto& [name, ray] : broken_rays<T>()) {
-            T t = 7, u = 7, v = 7;
-            EXPECT_FALSE(intersect_triangle(m, ray, a, b, c, t, u, v))
-                << name_of(m) << ", " << precision_name<T>() << ": " << name << " gave t " << t;
-        }
-        // A NaN tmax is no length at all: Moller-Trumbore's t < tmax rejects every hit, the watertight test's
-        // t >= tmax rejects none. Either answer is a usable one, as long as it is finite.
-        {
-            T t = 7, u = 7, v = 7;
-            const Ray<T> no_length{{0.2, 0.2, 1}, {0, 0, -1}, std::numeric_limits<T>::quiet_NaN()};
-            if (intersect_triangle(m, no_length, a, b, c, t, u, v)) {
-                EXPECT_TRUE(std::isfinite(t) && std::isfinite(u) && std::isfinite(v) && t > T(0)) << name_of(m);
-            }
-        }
-        // A collinear triangle of distinct points has zero area only up to rounding: a hit is allowed, but finite.
-        T t = 7, u = 7, v = 7;
-        if (intersect_triangle(m, diagonal, Vec3<T>(0, 0, 0), Vec3<T>(0.3, 0.3, 0), Vec3<T>(0.9, 0.9, 0), t, u, v)) {
-            EXPECT_TRUE(std::isfinite(t) && std::isfinite(u) && std::isfinite(v)) << name_of(m);
-            EXPECT_GT(t, T(0)) << name_of(m);
-        }
-    }
-}
-
-TEST(Inputs, DegenerateAndNonFiniteTrianglesAndRaysNeverHit) {
-    expect_broken_inputs_never_hit<float>();
-    expect_broken_inputs_never_hit<double>();
-}
 
 // A scene with every broken triangle (as a hand-made Scene would have them; flatten drops the non-finite ones) in
 // front of one valid triangle.

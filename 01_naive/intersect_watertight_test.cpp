@@ -1,8 +1,8 @@
-// Watertightness of the ray/triangle tests (intersect.h): rays aimed exactly at shared vertices and edges of closed
-// meshes never slip through with the watertight test (Woop, Benthin & Wald 2013); Moller-Trumbore's misses there are
-// counted and printed; away from edges the two agree. The rays come from hard_cases.h, shared with the GLSL suite
-// (common/gpu/glsl_twins/hard_cases_glsl_test.cpp). Run build/tests/unit_tests_common_trace
-// --gtest_filter='Watertight*' to see the rates.
+// Watertightness of the ray/triangle tests (intersect.h) in stage 01's brute-force tracer: rays aimed exactly at shared
+// vertices and edges of closed meshes never slip through with the watertight test (Woop, Benthin & Wald 2013);
+// Moller-Trumbore's misses there are counted and printed; away from edges the two agree. The rays come from
+// common/trace/hard_cases.h, shared with the GLSL suite (common/gpu/glsl_twins/hard_cases_glsl_test.cpp). Run
+// build/tests/unit_tests_01_naive --gtest_filter='Watertight*' to see the rates.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "01_naive/brute_force_tracer.h"
-#include "hard_cases.h"
-#include "intersect.h"
+#include "common/trace/hard_cases.h"
+#include "common/trace/intersect.h"
 
 namespace rt {
 namespace {
