@@ -8,7 +8,10 @@
 namespace rt {
 
 GridRenderer::GridRenderer()
-    : RasterizedPrimaryStage({"03_uniform_grid/shaders/grid.glsl", {{"GRID_STATS", "1"}}, [this] { bind_grid(); }, {}, {}, "grid cells"}) {}
+    : RasterizedPrimaryStage({.glsl = "03_uniform_grid/shaders/grid.glsl",   // the 3D-DDA, per ray
+                              .defines = {{"GRID_STATS", "1"}},
+                              .bind = [this] { bind_grid(); },
+                              .steps = "grid cells"}) {}
 GridRenderer::~GridRenderer() = default;
 
 void GridRenderer::add_options(CLI::App& app) {

@@ -50,6 +50,22 @@ void GpuRayHierarchy::reset_stats() {
 }
 
 // The CPU's own counts plus the GPU's sums (one read-back, only when a trace ran since the last one).
+HierarchyFrameStats GpuRayHierarchy::frame_stats() {
+    HierarchyFrameStats f;
+    f.options = options;
+    f.object_levels = object_levels();
+    f.object_nodes = object_nodes();
+    f.kinds = stats();   // adds its read-back to syncs
+    f.gpu_cpu_syncs = syncs;
+    f.pair_capacity = capacity();
+    f.chunks = chunks;
+    f.windows = windows;
+    f.groups_retraced = groups_retraced;
+    f.fold_rounds = fold_rounds;
+    f.hit_list_prunes = prunes;
+    return f;
+}
+
 const std::array<HierarchyKindStats, kRayKinds>& GpuRayHierarchy::stats() {
     if (tally_read_) return stats_;
     std::vector<std::uint32_t> t = tally_.download<std::uint32_t>(std::size_t(kRayKinds) * kTallyWords);

@@ -71,6 +71,9 @@ public:
     // GPU (shaders/rh_tally.comp) and read here, once after the traces that made them (one sync).
     const std::array<HierarchyKindStats, kRayKinds>& stats();
     void reset_stats();
+    // The frame's "ray_hierarchy" stats, with stats()'s one read, but for what the stage alone knows (whether it
+    // traced, its pass times).
+    HierarchyFrameStats frame_stats();
     // What one trace cost the traversal, for a caller that compares two orders of a batch (stage 05's --sort auto):
     // the GPU's running sums copied into `dst` at `offset` (tally_bytes() bytes; a copy on the GPU, no read-back)
     // before and after the trace. tally_pairs() of the later copy minus that of the earlier is every pair the trace

@@ -5,10 +5,10 @@
 namespace rt {
 
 RayHierarchyRenderer::RayHierarchyRenderer()
-    : RasterizedPrimaryStage({"", {}, {},
-                [this](const gpu::BatchTraceInputs& in) { trace_batch(in, false); },
-                [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); },
-                "leaf pairs"}) {}   // --pixel: the ray's (ray, triangle) pairs at level 0, its own node tests
+    : RasterizedPrimaryStage({.trace_batch = [this](const gpu::BatchTraceInputs& in) { trace_batch(in, false); },
+                              .shadow_batch = [this](const gpu::BatchTraceInputs& in) { trace_batch(in, true); },
+                              // --pixel: the ray's (ray, triangle) pairs at level 0, its own node tests
+                              .steps = "leaf pairs"}) {}
 RayHierarchyRenderer::~RayHierarchyRenderer() = default;
 
 std::string RayHierarchyRenderer::unsupported(const Scene&, const RenderSettings& settings) const {
@@ -53,19 +53,8 @@ std::vector<std::string> RayHierarchyRenderer::stage_programs() const {
 }
 
 void RayHierarchyRenderer::add_stage_stats(FrameResult& result) {
-    HierarchyFrameStats f;
-    f.options = hierarchy_options;
-    f.object_levels = hierarchy_->object_levels();
-    f.object_nodes = hierarchy_->object_nodes();
-    f.kinds = hierarchy_->stats();   // the frame's one read of the GPU's sums (it adds its sync)
-    f.gpu_cpu_syncs = hierarchy_->syncs;
+    HierarchyFrameStats f = hierarchy_->frame_stats();   // the frame's one read of the GPU's sums
     f.traced = traced_;
-    f.pair_capacity = hierarchy_->capacity();
-    f.chunks = hierarchy_->chunks;
-    f.windows = hierarchy_->windows;
-    f.groups_retraced = hierarchy_->groups_retraced;
-    f.fold_rounds = hierarchy_->fold_rounds;
-    f.hit_list_prunes = hierarchy_->prunes;
     for (int k = 1; k < kRayKinds; ++k) {
         const std::string kind = ray_kind_name(RayKind(k));
         f.times[std::size_t(k)] = {pass_ms(result, "rh_build." + kind), pass_ms(result, "rh_traverse." + kind),

@@ -15,6 +15,9 @@ const char* const kSortPhase[2] = {"rs_sort.trace", "rs_sort.shadow"};
 
 void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT); }
 
+// 32-bit words per ray in a batch's results: a shadow ray's one, a traced ray's WavefrontTraceResult.
+unsigned result_stride(bool shadow) { return shadow ? 1u : unsigned(sizeof(gpu::WavefrontTraceResult) / 4); }
+
 // The gather and scatter passes' buffers (shaders/ray_sort.glsl: RS_STAGE_BINDING_0..2): the stage's own points,
 // from the traversal's first (stage 04 rebinds its own before each of its passes).
 constexpr unsigned kStageBinding[] = {gpu::kBindingWavefrontTraversalFirst + 0,
@@ -74,85 +77,76 @@ void RaySortingRenderer::build(const Scene& scene, const RenderSettings& setting
                                   lights, KeyOrder::direction_first);
 }
 
-int RaySortingRenderer::remembered_order(std::size_t kind, std::uint32_t slot) {
-    if (sort_options.mode != SortMode::automatic || slot >= kOrderRecords) return -1;
-    BatchMemory& m = memory_[kind][slot];
-    if (m.to_check > 0) {   // the frame after a measure that kept a sort: the queue's order, for the check
-        ++m.unmeasured;
-        return kCheckOrder;
-    }
-    if (m.order < 0 || m.unmeasured + 1 >= sort_options.probe_every) return -1;
-    ++m.unmeasured;
-    return m.order;
-}
-
+// One batch: sort, gather, trace, scatter (or, when --sort auto's memory says so, stage 04's trace unsorted).
 void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shadow) {
-    if (!sort_options.sorts() || in.count == 0) {
-        RayHierarchyRenderer::trace_batch(in, shadow);
-        return;
-    }
-    const std::size_t n = in.count;
-    const unsigned stride = shadow ? 1u : unsigned(sizeof(gpu::WavefrontTraceResult) / 4);
+    if (!sort_options.sorts() || in.count == 0) return RayHierarchyRenderer::trace_batch(in, shadow);
     const std::size_t kind = shadow ? 1 : 0;
-    SortBatchStats& stats = batch_stats_[kind];
     const std::uint32_t slot = batch_index_[kind]++;
-    const int remembered = remembered_order(kind, slot);   // memory_: -1 measure, else the order that won
-    if (remembered == 0 || remembered == kCheckOrder) {   // the queue's order: stage 04's trace, no sort
-        stats.skipped_batches += 1;
-        stats.skipped_rays += n;
-        const bool check = remembered == kCheckOrder;   // and what it tested, against the sort's (add_stage_stats)
-        if (check) {
-            stats.checked_batches += 1;
-            choice_.record_work(hierarchy(), int(kind), slot, false);
-        }
-        RayHierarchyRenderer::trace_batch(in, shadow);
-        if (check) choice_.record_work(hierarchy(), int(kind), slot, true);
-        return;
-    }
+    const BatchPlan plan = memory_.plan(kind, slot, sort_options);
+    if (!plan_sorts(plan)) return trace_unsorted(in, shadow, slot, plan);
     {
         auto timed = timer().scope(kSortPhase[kind]);
-        // ray_keys.h: which order suits which rays; a remembered fine order is sorted by the fine key alone.
-        sorter_->layout = layouts_[remembered == 2 ? 2 : kind];
-        sorter_->tally_slot = kind;   // the chunk counts per batch kind, summed on the GPU
-        sorter_->sort(in.rays, in.first, n, order_);
-        if (remembered > 0) {   // a sorted order won when last measured: keep it, unmeasured
-            kept_[kind].batches += 1;
-            kept_[kind].rays += n;
-            if (remembered == 2) kept_[kind].fine_batches += 1;
-        } else if (sort_options.mode == SortMode::automatic) {
-            // Reflection and refraction rays: a second order by the finer direction cell, for the choice.
-            const bool fine = !shadow && fine_direction_bits() > 0;
-            if (fine) {
-                sorter_->layout = layouts_[2];
-                sorter_->tally_slot = 2;   // not reported: a batch's chunks are those of its first key
-                sorter_->sort(in.rays, in.first, n, fine_order_);
-            }
-            choice_.choose(in.wavefront.defines(), in.rays, in.first, n, order_, fine ? &fine_order_ : nullptr,
-                           hierarchy_options.branching, diagonal_, int(kind), slot);
-            stats.measured_batches += 1;
-            if (slot < kOrderRecords) memory_[kind][slot].rays = n;   // what its sort cost, for the check
-        }
-        sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
-        gather_.set("rs_count", unsigned(n));
-        in.rays.bind_range(kStageBinding[0], 0, (in.first + n) * sizeof(gpu::WavefrontRay));
-        order_.bind_range(kStageBinding[1], 0, n * 4);
-        sorted_rays_.bind_range(kStageBinding[2], 0, n * sizeof(gpu::WavefrontRay));
-        gather_.dispatch_threads(n);
-        barrier();
+        sort(in, kind, slot, plan);   // 1. the rays' keys, radix-sorted: order_ (ray_sort.h)
+        gather(in);                   // 2. the rays copied into that order
     }
-    stats.batches += 1;
-    stats.rays += n;
+    trace_sorted(in, shadow, slot, plan);   // 3. stage 04's hierarchy over the sorted rays
+    scatter(in, shadow);                    // 4. the results put back in queue order
+}
 
-    sorted_results_.reserve(n * stride * 4);
-    // A measured batch's pairs, for the check of its choice (sorting_renderer.h); not needed without one.
-    const bool record = remembered < 0 && sort_options.mode == SortMode::automatic && sort_options.probe_every >= 3;
+void RaySortingRenderer::sort(const gpu::BatchTraceInputs& in, std::size_t kind, std::uint32_t slot, BatchPlan plan) {
+    // ray_keys.h: which key suits which rays; a remembered fine order is sorted by the fine key alone.
+    sorter_->layout = layouts_[plan == BatchPlan::fine ? 2 : kind];
+    sorter_->tally_slot = kind;   // the chunk counts per batch kind, summed on the GPU
+    sorter_->sort(in.rays, in.first, in.count, order_);
+    batch_stats_[kind].batches += 1;
+    batch_stats_[kind].rays += in.count;
+    if (plan != BatchPlan::measure) {   // a sorted order won when last measured: keep it, unmeasured
+        kept_[kind].batches += 1;
+        kept_[kind].rays += in.count;
+        if (plan == BatchPlan::fine) kept_[kind].fine_batches += 1;
+    } else if (sort_options.mode == SortMode::automatic) {
+        // Reflection and refraction rays: a second order by the finer direction cell, for the choice.
+        const bool fine = kind == 0 && fine_direction_bits() > 0;
+        if (fine) {
+            sorter_->layout = layouts_[2];
+            sorter_->tally_slot = 2;   // not reported: a batch's chunks are those of its first key
+            sorter_->sort(in.rays, in.first, in.count, fine_order_);
+        }
+        choice_.choose(in.wavefront.defines(), in.rays, in.first, in.count, order_, fine ? &fine_order_ : nullptr,
+                       hierarchy_options.branching, diagonal_, int(kind), slot);
+        batch_stats_[kind].measured_batches += 1;
+        memory_.measured(kind, slot, in.count);   // what its sort cost, for the check
+    }
+}
+
+void RaySortingRenderer::gather(const gpu::BatchTraceInputs& in) {
+    const std::size_t n = in.count;
+    sorted_rays_.reserve(n * sizeof(gpu::WavefrontRay));
+    gather_.set("rs_count", unsigned(n));
+    in.rays.bind_range(kStageBinding[0], 0, (in.first + n) * sizeof(gpu::WavefrontRay));
+    order_.bind_range(kStageBinding[1], 0, n * 4);
+    sorted_rays_.bind_range(kStageBinding[2], 0, n * sizeof(gpu::WavefrontRay));
+    gather_.dispatch_threads(n);
+    barrier();
+}
+
+void RaySortingRenderer::trace_sorted(const gpu::BatchTraceInputs& in, bool shadow, std::uint32_t slot,
+                                      BatchPlan plan) {
+    const std::size_t n = in.count, kind = shadow ? 1 : 0;
+    sorted_results_.reserve(n * result_stride(shadow) * 4);
+    // A measured batch's pairs, for the check of its choice (sort_memory.h).
+    const bool record = plan == BatchPlan::measure && checks_sorts();
     if (record) choice_.record_work(hierarchy(), int(kind), slot, false);
     // The same runs: the key's group field (ray_keys.h) sorts the groups in the queue's order, each its whole self.
     RayHierarchyRenderer::trace_batch({sorted_rays_, 0, n, sorted_results_, in.tests_per_pixel, in.wavefront, in.runs},
                                       shadow);
     if (record) choice_.record_work(hierarchy(), int(kind), slot, true);
+}
 
-    auto timed = timer().scope(kSortPhase[kind]);
+void RaySortingRenderer::scatter(const gpu::BatchTraceInputs& in, bool shadow) {
+    const std::size_t n = in.count;
+    const unsigned stride = result_stride(shadow);
+    auto timed = timer().scope(kSortPhase[shadow ? 1 : 0]);
     scatter_.set("rs_count", unsigned(n));
     scatter_.set("rs_first", unsigned(in.first));
     scatter_.set("rs_stride", stride);
@@ -162,6 +156,30 @@ void RaySortingRenderer::trace_batch(const gpu::BatchTraceInputs& in, bool shado
     scatter_.dispatch_threads(n);
     barrier();
     gpu::check_gl("05_ray_sorting: sorted batch");
+}
+
+void RaySortingRenderer::trace_unsorted(const gpu::BatchTraceInputs& in, bool shadow, std::uint32_t slot,
+                                        BatchPlan plan) {
+    const std::size_t kind = shadow ? 1 : 0;
+    SortBatchStats& stats = batch_stats_[kind];
+    stats.skipped_batches += 1;
+    stats.skipped_rays += in.count;
+    const bool check = plan == BatchPlan::check_queue;   // what the queue's order tests, against the kept sort's
+    if (check) {
+        stats.checked_batches += 1;
+        choice_.record_work(hierarchy(), int(kind), slot, false);
+    }
+    RayHierarchyRenderer::trace_batch(in, shadow);
+    if (check) choice_.record_work(hierarchy(), int(kind), slot, true);
+}
+
+void RaySortingRenderer::end_frame() {
+    RayHierarchyRenderer::end_frame();
+    sorts_dropped_ = {};
+    if (sort_options.mode != SortMode::automatic) return;
+    // The measured batches' choices and the recorded pairs, tallied on the GPU and read here once per frame.
+    tally_ = choice_.tally();
+    sorts_dropped_ = memory_.learn(tally_, sort_options);
 }
 
 std::vector<std::string> RaySortingRenderer::stage_programs() const {
@@ -190,33 +208,15 @@ void RaySortingRenderer::add_stage_stats(FrameResult& result) {
         for (std::size_t k = 0; k < 2; ++k) f.batches[k].chunks = chunks[k];
         f.gpu_cpu_syncs = sorter_->syncs;
     }
-    // Batches (and their rays) whose sorted order was kept, and those of them that kept the fine key's: all of
-    // them with --sort on (one key); with auto the measured batches' choices, tallied on the GPU and read here once
-    // per frame (one more sync), plus the batches sorted by a remembered order (kept_). The same read-back brings
-    // each measured batch's choice, which the next frames remember (memory_), and the pairs of the batches whose
-    // kept sort is being checked (sorting_renderer.h).
+    // Batches (and their rays) whose sorted order was kept, and of them those that kept the fine key's: every sorted
+    // batch with --sort on; with auto the measured batches' choices (end_frame's read) and those sorted by a
+    // remembered order (kept_).
     if (sort_options.mode == SortMode::automatic) {
-        const GpuOrderChoice::FrameTally t = choice_.tally();
-        ++f.gpu_cpu_syncs;
+        ++f.gpu_cpu_syncs;   // end_frame's read
         for (std::size_t k = 0; k < 2; ++k) {
-            f.kept[k] = {t.kept[k].batches + kept_[k].batches, t.kept[k].rays + kept_[k].rays,
-                         t.kept[k].fine_batches + kept_[k].fine_batches};
-            for (std::size_t slot = 0; slot < kOrderRecords; ++slot) {
-                BatchMemory& m = memory_[k][slot];
-                const std::uint64_t pairs = t.work[k][slot];
-                const bool recorded = pairs != GpuOrderChoice::kNoWork;
-                if (t.choices[k][slot] != kOrderNoRecord) {   // measured: a kept sort is checked next frame
-                    const int order = int(t.choices[k][slot]);
-                    const bool check = order > 0 && recorded;
-                    m = {order, 0, check ? order : 0, check ? pairs : 0, m.rays};
-                } else if (m.to_check > 0 && recorded) {   // checked: the queue's order tested `pairs`
-                    const bool sort_won = sort_pays(pairs, m.sorted_pairs, m.rays, sort_options.batch_cost,
-                                                    sort_options.ray_cost);
-                    if (!sort_won) f.batches[k].sorts_dropped += 1;
-                    m.order = sort_won ? m.to_check : 0;
-                    m.to_check = 0;
-                }
-            }
+            const GpuOrderChoice::Tally& t = tally_.kept[k];
+            f.kept[k] = {t.batches + kept_[k].batches, t.rays + kept_[k].rays, t.fine_batches + kept_[k].fine_batches};
+            f.batches[k].sorts_dropped = sorts_dropped_[k];
         }
     }
     if (sort_options.mode == SortMode::on)

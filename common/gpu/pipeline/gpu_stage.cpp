@@ -151,6 +151,7 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     // The frame's read-backs (each a wait for the GPU): the pipeline's here; a stage that reads back adds its own
     // in add_stage_stats (and says how many in its own section).
     result.extra["gpu_cpu_syncs"] = s.wavefront.syncs();
+    end_frame();
     add_stage_stats(result);
 
     if (viewer_) {

@@ -67,6 +67,8 @@ protected:
     virtual bool rasterizes_primary_rays() const { return false; }
     // Programs of the stage's own passes, added to the stats' `programs`.
     virtual std::vector<std::string> stage_programs() const { return {}; }
+    // The stage's work at the end of a frame, before its stats: what it reads back to remember for the next frames.
+    virtual void end_frame() {}
     // The stage's own stats (e.g. stage 03's grid), added to result.extra after the frame.
     virtual void add_stage_stats(FrameResult& /*result*/) {}
 
