@@ -2,7 +2,7 @@
 // Whitted: a BLEND surface of opacity alpha is shaded with weight alpha and a transparency ray carries 1 - alpha on
 // through it; shadow rays read it as a cut-out at 0.5; a fully transparent texel is no hit; a BLEND surface does not
 // refract; without the `blend` effect BLEND is a cut-out at 0.5 for every ray. Scenes of emissive squares, so every
-// colour is known by hand. When a scene calls for the effect: common/trace/blend_effect_test.cpp.
+// colour is known by hand.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -70,6 +70,18 @@ Traced trace(const Scene& s, bool blend, int max_depth = 5) {
                   .radiance(kDown, 0, glm::vec3(1.0f), t.counters, &log);
     EXPECT_TRUE(all_finite(t.color));
     return t;
+}
+
+TEST(BlendCoverage, TheSceneCallsForBlendOnlyWhenATriangleUsesABlendMaterial) {
+    EXPECT_TRUE(analyze_effects(pane_over_wall(0.5f)).blend);
+    EXPECT_TRUE(analyze_effects(pane_over_wall(0.5f)).cutouts);
+    Scene mask = pane_over_wall(0.5f);
+    mask.materials[0].alpha_mode = AlphaMode::Mask;
+    EXPECT_FALSE(analyze_effects(mask).blend) << "MASK stays a cut-out";
+    Scene unused = pane_over_wall(0.5f);
+    unused.material_ids.assign(unused.material_ids.size(), 1u);
+    EXPECT_FALSE(analyze_effects(unused).blend) << "no triangle uses the BLEND material";
+    EXPECT_TRUE(resolve_effects("blend", unused).cutouts) << "blend turns cutouts on";
 }
 
 TEST(BlendCoverage, APaneShowsAlphaOfItsColourAndOneMinusAlphaOfWhatIsBehindIt) {
