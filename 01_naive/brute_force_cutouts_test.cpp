@@ -5,28 +5,10 @@
 
 #include "01_naive/brute_force_tracer.h"
 #include "common/trace/opacity.h"
+#include "tests/cutout_scenes.h"
 
 namespace rt {
 namespace {
-
-// One triangle (0,0,0) (1,0,0) (0,1,0) with uvs equal to its xy, and one material.
-Scene one_triangle(const Material& m) {
-    Scene s;
-    s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    s.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
-    s.uvs = {{0, 0}, {1, 0}, {0, 1}};
-    s.material_ids = {0};
-    s.materials = {m};
-    return s;
-}
-
-Material masked(float factor_alpha, float cutoff) {
-    Material m;
-    m.base_color.a = factor_alpha;
-    m.alpha_mode = AlphaMode::Mask;
-    m.alpha_cutoff = cutoff;
-    return m;
-}
 
 // A hole (alpha 0) in front of a wall: every ray kind passes through the hole and stops at the solid part.
 TEST(Opacity, BruteForceSeesThroughHolesForClosestAndAnyHit) {

@@ -2,23 +2,14 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <utility>
 
 namespace rt::gpu {
 
-BruteForceTraversal::BruteForceTraversal(std::function<std::size_t()> triangle_count, std::size_t slice_triangles)
-    : triangle_count_(std::move(triangle_count)), slice_(slice_triangles) {
+BruteForceTraversal::BruteForceTraversal(std::size_t slice_triangles) : slice_(slice_triangles) {
     if (slice_ == 0) throw std::invalid_argument("BruteForceTraversal: a slice needs at least one triangle");
 }
 
-Traversal BruteForceTraversal::traversal() {
-    Traversal t;   // a batch traversal: brute_force_slice.comp includes the GLSL itself
-    t.trace_batch = [this](const BatchTraceInputs& in) { run(false, in); };
-    t.shadow_batch = [this](const BatchTraceInputs& in) { run(true, in); };
-    return t;
-}
-
-void BruteForceTraversal::run(bool any_hit, const BatchTraceInputs& in) {
+void BruteForceTraversal::trace_batch(const BatchTraceInputs& in, bool shadow) {
     if (!closest_ || in.wavefront.defines() != compiled_for_) {
         ShaderDefines any_defines = in.wavefront.defines();
         any_defines.emplace("ANY_HIT", "1");
@@ -27,14 +18,14 @@ void BruteForceTraversal::run(bool any_hit, const BatchTraceInputs& in) {
         any_ = Program::compute("02_raster_hybrid/shaders/brute_force_slice.comp", any_defines);
         compiled_for_ = in.wavefront.defines();
     }
-    const Program& program = any_hit ? any_ : closest_;
+    const Program& program = shadow ? any_ : closest_;
     in.rays.bind(kWavefrontBindingRaysIn);
     in.results.bind(kWavefrontBindingResults);
     if (in.tests_per_pixel) in.tests_per_pixel->bind(kWavefrontBindingTestsPerPixel);
     in.wavefront.set_uniforms(program);
     program.set("wf_input_first", unsigned(in.first));
     program.set("wf_input_count", unsigned(in.count));
-    const std::size_t n = triangle_count_();
+    const std::size_t n = in.triangles;
     // Slice 0 always runs: it initializes every result (no hit / not blocked), even in a scene without triangles.
     for (std::size_t first = 0; first == 0 || first < n; first += slice_) {
         program.set("bf_slice_first", unsigned(first));

@@ -6,31 +6,26 @@
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <string>
 
 #include "common/gpu/gl/shader.h"
+#include "common/gpu/pipeline/traversal.h"
 #include "common/gpu/pipeline/wavefront.h"
 
 namespace rt::gpu {
 
-class BruteForceTraversal {
+class BruteForceTraversal final : public Traversal {
 public:
     static constexpr std::size_t kSliceTriangles = 16384;
 
-    // triangle_count: the uploaded scene's triangles, asked for at each pass (the scene changes between frames).
-    explicit BruteForceTraversal(std::function<std::size_t()> triangle_count,
-                                 std::size_t slice_triangles = kSliceTriangles);
+    explicit BruteForceTraversal(std::size_t slice_triangles = kSliceTriangles);
 
-    // The Traversal to give the wavefront pipeline (valid while this object lives).
-    Traversal traversal();
+    // A batch traversal: each pass, a closest-hit or any-hit slice program over the queue, slice after slice.
+    void trace_batch(const BatchTraceInputs& in, bool shadow) override;
     // Dispatches of the slice passes so far (tests).
     int dispatches() const { return dispatches_; }
 
 private:
-    void run(bool any_hit, const BatchTraceInputs& in);
-
-    std::function<std::size_t()> triangle_count_;
     std::size_t slice_;
     Program closest_, any_;
     ShaderDefines compiled_for_;   // the wavefront defines the programs were compiled with

@@ -48,7 +48,8 @@ Frame render(const Scene& scene, GpuScene& gpu_scene) {
     settings.effects = analyze_effects(scene);
     gpu_scene.upload(scene);
     GBuffer gbuffer;
-    Wavefront wavefront(Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
+    GlslTraversal per_ray("02_raster_hybrid/shaders/brute_force.glsl");
+    Wavefront wavefront(per_ray);
     wavefront.begin_frame(gpu_scene, settings);
     gbuffer.render(gpu_scene, scene.camera, scene.bounds, settings.width, settings.height, glm::vec2(0.5f));
     gpu_scene.bind();

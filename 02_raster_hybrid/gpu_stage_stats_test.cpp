@@ -29,12 +29,9 @@ Frame whitted_frame(int width, int height) {
 // The smallest GPU stage: brute force, primary rays traced by the shared pipeline.
 class TracedPrimaryStage : public gpu::GpuStage {
 public:
-    TracedPrimaryStage() : GpuStage({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {}
-
-protected:
-    void render_sample(const Scene&, const RenderSettings&, glm::vec2 offset) override {
-        wavefront().trace_camera_sample(offset);
-    }
+    TracedPrimaryStage()
+        : GpuStage(std::make_unique<gpu::TracedPrimary>(),
+                   std::make_unique<gpu::GlslTraversal>("02_raster_hybrid/shaders/brute_force.glsl")) {}
 };
 
 TEST(GpuStageStats, HybridRasterizesPrimaryRaysAndTimesEachPhase) {

@@ -26,18 +26,8 @@ Scene spheres_300() {
 // Stage 02's traversal tracing the camera rays too (closest hits through the slices), as 03's --primary trace does.
 class TracedBruteForce : public gpu::GpuStage {
 public:
-    TracedBruteForce() : GpuStage({}), brute_force_([this] { return gpu_scene().triangle_count(); }) {
-        set_traversal(brute_force_.traversal());
-    }
-
-protected:
-    void render_sample(const Scene&, const RenderSettings&, glm::vec2 offset) override {
-        gpu_scene().bind();
-        wavefront().trace_camera_sample(offset);
-    }
-
-private:
-    gpu::BruteForceTraversal brute_force_;
+    TracedBruteForce()
+        : GpuStage(std::make_unique<gpu::TracedPrimary>(), std::make_unique<gpu::BruteForceTraversal>()) {}
 };
 
 void expect_hits_like_stage01(const FrameResult& a, const Scene& scene, const RenderSettings& settings,

@@ -67,7 +67,8 @@ std::vector<glm::vec3> render_gpu(const Scene& scene) {
     settings.height = kHeight;
     settings.effects = analyze_effects(scene);
     gpu::GBuffer gbuffer;
-    gpu::Wavefront wavefront(gpu::Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
+    gpu::GlslTraversal per_ray("02_raster_hybrid/shaders/brute_force.glsl");
+    gpu::Wavefront wavefront(per_ray);
     wavefront.begin_frame(gpu_scene, settings);
     const glm::vec2 offset = pixel_sample_offsets(1)[0];
     gbuffer.render(gpu_scene, scene.camera, scene.bounds, kWidth, kHeight, offset);

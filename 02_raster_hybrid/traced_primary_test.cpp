@@ -29,7 +29,8 @@ Image traced_primary_frame_like_stage01s(FresnelMode fresnel) {
 
     gpu::GpuScene gpu_scene;
     gpu_scene.upload(scene);
-    gpu::Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
+    gpu::GlslTraversal per_ray("02_raster_hybrid/shaders/brute_force.glsl");
+    gpu::Wavefront wavefront(per_ray);
     wavefront.begin_frame(gpu_scene, settings);
     wavefront.trace_camera_sample(glm::vec2(0.5f));
     RayCounters gpu_counters;
@@ -88,7 +89,8 @@ TEST(Wavefront, TracedRaysHitWhatStage01HitsOnCoincidentTrianglesAndCutouts) {
 
         gpu::GpuScene gpu_scene;
         gpu_scene.upload(scene);
-        gpu::Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
+        gpu::GlslTraversal per_ray("02_raster_hybrid/shaders/brute_force.glsl");
+        gpu::Wavefront wavefront(per_ray);
         wavefront.begin_frame(gpu_scene, settings);
         wavefront.trace_camera_sample(glm::vec2(0.5f));
         FrameResult gpu;

@@ -4,7 +4,7 @@
 //    tests and images, and primary hits come in 8x8 tiles, Morton order inside;
 //  - the radiance sum holds photometric values (a 1e7 cd lamp, a 1e5 lux sun) and agrees with stage 01, saturates
 //    instead of wrapping beyond its range, and many samples do not overflow;
-//  - a batch traversal (Traversal::trace_batch / shadow_batch) gives exactly what the per-ray traversal gives;
+//  - a batch traversal (Traversal::trace_batch) gives exactly what the per-ray traversal gives;
 //  - a tiny storage-block limit (batches of tiles, of rays, of lights) gives exactly the same frame.
 #include <gtest/gtest.h>
 
@@ -30,10 +30,10 @@
 namespace rt {
 namespace {
 
-const gpu::Traversal kBruteForce{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}};
+gpu::GlslTraversal kBruteForce("02_raster_hybrid/shaders/brute_force.glsl");   // per ray, one loop
 
 // One frame as stage 02 renders it: G-buffer, then the pipeline, per sample.
-FrameResult render_hybrid(const Scene& scene, const RenderSettings& settings, const gpu::Traversal& traversal,
+FrameResult render_hybrid(const Scene& scene, const RenderSettings& settings, gpu::Traversal& traversal,
                           std::size_t max_storage_bytes = 0) {
     gpu::test_context();
     gpu::GpuScene gpu_scene;
@@ -294,16 +294,15 @@ TEST(RadianceSum, ManySamplesOfABrightSceneDoNotOverflow) {
 // Brute force as a batch traversal (stage 02's: brute_force_traversal.h), in slices of 7 triangles so every pass
 // takes several dispatches: exactly what one loop over all triangles per ray gives (same hits, ties, counts).
 TEST(BatchTraversal, BruteForceInSlicesGivesIdenticalImagesHitsAndCounts) {
-    std::size_t triangles = 0;
-    gpu::BruteForceTraversal sliced([&] { return triangles; }, 7);
+    gpu::BruteForceTraversal sliced(7);
     for (const char* name : {"whitted", "cornell"}) {
         const Scene scene = builtin_scene_for(name, 64, 48);
-        triangles = scene.triangle_count();
+        const std::size_t triangles = scene.triangle_count();
         ASSERT_GT(triangles, 14u) << name;
         const RenderSettings settings = test_frame_settings(scene, 64, 48, true);
         const FrameResult per_ray = render_hybrid(scene, settings, kBruteForce);
         const int before = sliced.dispatches();
-        const FrameResult batched = render_hybrid(scene, settings, sliced.traversal());
+        const FrameResult batched = render_hybrid(scene, settings, sliced);
         EXPECT_GE(sliced.dispatches() - before, int((triangles + 6) / 7)) << name;
         expect_same_frame(per_ray, batched, true);
     }
@@ -316,9 +315,6 @@ TEST(BatchTraversal, BruteForceInSlicesGivesIdenticalImagesHitsAndCounts) {
 Scene many_lights_scene(int width, int height);
 
 TEST(BatchTraversal, RunsAreTheBatchsMaximalRunsOfOneKindAndLight) {
-    std::size_t triangles = 0;
-    gpu::BruteForceTraversal brute([&] { return triangles; }, 1u << 20);
-    gpu::Traversal checked = brute.traversal();
     std::set<std::pair<RayKind, std::uint32_t>> seen;
     int batches = 0;
     const auto check = [&](const gpu::BatchTraceInputs& in) {
@@ -334,9 +330,16 @@ TEST(BatchTraversal, RunsAreTheBatchsMaximalRunsOfOneKindAndLight) {
             EXPECT_EQ(in.runs[r].light, expected[r].light) << "batch " << batches << ", run " << r;
         }
     };
-    const auto trace = checked.trace_batch, shadow = checked.shadow_batch;
-    checked.trace_batch = [&, trace](const gpu::BatchTraceInputs& in) { check(in); trace(in); };
-    checked.shadow_batch = [&, shadow](const gpu::BatchTraceInputs& in) { check(in); shadow(in); };
+    // Brute force, each batch's runs checked against its rays before it is traced.
+    struct Checked final : gpu::Traversal {
+        explicit Checked(const decltype(check)& c) : check_runs(c) {}
+        void trace_batch(const gpu::BatchTraceInputs& in, bool shadow) override {
+            check_runs(in);
+            brute.trace_batch(in, shadow);
+        }
+        const decltype(check)& check_runs;
+        gpu::BruteForceTraversal brute{1u << 20};
+    } checked(check);
 
     Scene blend = builtin_scene_for("whitted", 64, 48);
     for (Material& m : blend.materials)
@@ -348,7 +351,6 @@ TEST(BatchTraversal, RunsAreTheBatchsMaximalRunsOfOneKindAndLight) {
                                                    {many_lights_scene(64, 48), 48 << 10},
                                                    {blend, 0}};
     for (const auto& [scene, limit] : cases) {
-        triangles = scene.triangle_count();
         render_hybrid(scene, test_frame_settings(scene, 64, 48), checked, limit);
     }
     EXPECT_GT(batches, 10);

@@ -119,6 +119,23 @@ std::vector<std::uint64_t> GpuGrid::traversal_stats() const {
     return stats;
 }
 
+GridFrameStats GpuGrid::frame_stats() const {
+    GridFrameStats stats;
+    stats.built = true;
+    stats.resolution = params_.res;
+    stats.cells = params_.cell_count;
+    stats.pairs = pairs_;
+    count_cell_occupancy(cell_ranges(), stats);
+    // grid.glsl's counters: rays [k], cells visited [kRayKinds + k], tests [2 kRayKinds + k], bound reached
+    // [3 kRayKinds].
+    const std::vector<std::uint64_t> s = traversal_stats();
+    for (std::size_t k = 0; k < std::size_t(kRayKinds); ++k)
+        stats.walks[k] = {s[k], s[kRayKinds + k], s[2 * kRayKinds + k]};
+    stats.loop_bound_reached = s[3 * kRayKinds];
+    stats.gpu_cpu_syncs = syncs_;
+    return stats;
+}
+
 std::vector<std::uint32_t> GpuGrid::cell_ranges() const {
     ++syncs_;
     return grid_.download<std::uint32_t>(std::size_t(params_.cell_count) * 2, kHeaderBytes / 4);

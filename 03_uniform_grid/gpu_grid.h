@@ -26,6 +26,7 @@
 #include "common/gpu/primitives/radix_sort.h"
 #include "common/gpu/primitives/scan.h"
 #include "common/gpu/gl/shader.h"
+#include "grid_stats.h"
 #include "uniform_grid.h"
 
 namespace rt {
@@ -40,6 +41,8 @@ public:
     void bind() const;
     // The traversal's counters (grid.glsl, GRID_STATS): cleared by build(), read back (waits for the GPU).
     std::vector<std::uint64_t> traversal_stats() const;
+    // The frame's stats of the grid and its walks (grid_stats.h; reads back the counters and the cell ranges).
+    GridFrameStats frame_stats() const;
 
     const GridParams& params() const { return params_; }
     std::size_t pairs() const { return pairs_; }

@@ -198,13 +198,9 @@ TEST(GridRenderer, ImageAndHitsEqualStage02s) {
 // Traced primary rays: the same frame as brute force tracing them (02_raster_hybrid/shaders/brute_force.glsl through the same pipeline).
 class TracedBruteForce : public gpu::GpuStage {
 public:
-    TracedBruteForce() : GpuStage({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {}
-
-protected:
-    void render_sample(const Scene&, const RenderSettings&, glm::vec2 offset) override {
-        gpu_scene().bind();
-        wavefront().trace_camera_sample(offset);
-    }
+    TracedBruteForce()
+        : GpuStage(std::make_unique<gpu::TracedPrimary>(),
+                   std::make_unique<gpu::GlslTraversal>("02_raster_hybrid/shaders/brute_force.glsl")) {}
 };
 
 TEST(GridRenderer, TracedPrimaryRaysGiveBruteForcesFrame) {

@@ -8,35 +8,39 @@
 #include <string>
 #include <vector>
 
-#include "02_raster_hybrid/rasterized_primary_stage.h"
+#include "common/gpu/pipeline/gpu_stage.h"
 #include "gpu_grid.h"
 #include "grid_options.h"
 
 namespace rt {
 
-class GridRenderer : public RasterizedPrimaryStage {
+// The grid as the pipeline's traversal: built over the uploaded scene each frame, walked per ray by grid.glsl.
+class GridTraversal final : public gpu::Traversal {
 public:
-    GridRenderer();
-    ~GridRenderer() override;
+    explicit GridTraversal(GridOptions& options) : options_(options) {}
 
-    void add_options(CLI::App& app) override;   // the GPU options and grid_options.h's
-    GridOptions grid_options;
-
-protected:
-    void build(const Scene& scene, const RenderSettings& settings) override;
-    void render_sample(const Scene& scene, const RenderSettings& settings, glm::vec2 offset) override;
-    bool rasterizes_primary_rays() const override { return !grid_options.trace_primary; }
-    std::vector<std::string> stage_programs() const override;
-    void add_stage_stats(FrameResult& result) override;   // grid_stats.h
+    void add_options(CLI::App& app) override { add_grid_options(app, options_); }
+    void build(const gpu::FrameInputs& frame) override;
+    std::string glsl() const override { return "03_uniform_grid/shaders/grid.glsl"; }   // the 3D-DDA, per ray
+    gpu::ShaderDefines defines() const override { return {{"GRID_STATS", "1"}}; }
+    void bind() const override;
+    std::string steps() const override { return "grid cells"; }
+    void report(gpu::FrameReport& report) override;   // grid_stats.h
+    std::vector<std::string> programs() const override;
 
 private:
-    // Whether any ray of the frame is traced: traced primaries, shadows with lights, or reflections/refractions.
-    static bool needs_grid(const Scene& scene, const RenderSettings& settings, bool trace_primary);
-    void bind_grid() const;
-
+    GridOptions& options_;                    // the stage's
     std::unique_ptr<GpuGrid> grid_;           // created with the first frame that needs it (needs the context)
     bool built_ = false;
     float lambda_used_ = kDefaultGridLambda;   // lambda after fitting the cells into the storage limit
+};
+
+// Stage 02's rasterized primary visibility (or, --primary trace, camera rays traced through the grid) + the grid.
+class GridRenderer : public gpu::GpuStage {
+public:
+    GridRenderer();
+    // Read by the primary visibility (--primary) and the traversal, which hold it by reference (set before a frame).
+    GridOptions grid_options;
 };
 
 }  // namespace rt

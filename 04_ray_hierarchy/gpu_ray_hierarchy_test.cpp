@@ -59,7 +59,8 @@ void expect_brute_force_answers(const Scene& scene, const std::string& what) {
     settings.width = 64;
     settings.height = 48;
     settings.effects = analyze_effects(scene);
-    gpu::Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
+    gpu::GlslTraversal per_ray("02_raster_hybrid/shaders/brute_force.glsl");
+    gpu::Wavefront wavefront(per_ray);
     wavefront.begin_frame(gpu_scene, settings);
 
     // Rays from inside the box: random, identical, one origin, opposite, zero/NaN/infinite directions.
@@ -228,7 +229,7 @@ TEST(GpuObjectTree, TheGpuBuildsTheCpuTree) {
 // besides the rays, for the tests that trace batches of their own.
 struct TraceSetup {
     explicit TraceSetup(const std::string& name)
-        : scene(builtin_scene(name)), wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}}) {
+        : scene(builtin_scene(name)), wavefront(per_ray) {
         gpu_scene.upload(scene);
         RenderSettings settings;
         settings.effects = analyze_effects(scene);
@@ -236,6 +237,7 @@ struct TraceSetup {
     }
     Scene scene;
     gpu::GpuScene gpu_scene;
+    gpu::GlslTraversal per_ray{"02_raster_hybrid/shaders/brute_force.glsl"};
     gpu::Wavefront wavefront;
 };
 

@@ -65,7 +65,7 @@ inline bool keep_sorted_order(std::uint64_t queue_cost, std::uint64_t sorted_cos
     return double(sorted_cost) * kOrderMarginDenominator < double(queue_cost) * (kOrderMarginDenominator - 1.0);
 }
 
-// The check's rule (sorting_renderer.h): a sort the measure kept stays only if the pairs it saved (queue's order
+// The check's rule (sort_auto.h): a sort the measure kept stays only if the pairs it saved (queue's order
 // minus sorted, both measured on the batch) pay for its passes: more than batch_cost + ray_cost x its rays, in pair
 // tests (sort_options.h: kSortBatchCost, kSortRayCost). With both costs 0: any saving.
 inline bool sort_pays(std::uint64_t queue_pairs, std::uint64_t sorted_pairs, std::uint64_t rays,
@@ -79,7 +79,7 @@ inline bool sort_pays(std::uint64_t queue_pairs, std::uint64_t sorted_pairs, std
 int choose_order(std::uint64_t queue_cost, std::uint64_t sorted_cost, std::optional<std::uint64_t> fine_cost = {});
 
 // The choices of a frame's first kOrderRecords batches of each kind are recorded (order_choice.glsl: OC_RECORDS), so
-// the renderer can take the order that won in the next frames without measuring again (sorting_renderer.h).
+// the renderer can take the order that won in the next frames without measuring again (sort_auto.h).
 constexpr std::uint32_t kOrderRecords = 64;
 constexpr std::uint32_t kOrderNoRecord = 0xffffffffu;   // OC_NO_RECORD: no batch chose in that slot
 
@@ -117,7 +117,7 @@ public:
     };
     FrameTally tally() const;
     void reset_tally();
-    // The check of a choice (sorting_renderer.h): the pairs the hierarchy tested for the batch of slot `record` of
+    // The check of a choice (sort_auto.h): the pairs the hierarchy tested for the batch of slot `record` of
     // `kind`, in whatever order it was traced (GpuRayHierarchy::tally_pairs): its tally copied into this one's
     // buffer before (`after` false) and after the trace, on the GPU; tally() brings the difference with the choices.
     void record_work(const GpuRayHierarchy& hierarchy, int kind, std::uint32_t record, bool after);

@@ -19,7 +19,7 @@ struct SortBatchStats {   // per batch kind: 0 = trace (reflection, refraction),
     std::uint64_t measured_batches = 0;   // auto: sorted by every key and measured (order_choice.h)
     std::uint64_t skipped_batches = 0, skipped_rays = 0;   // auto: traced unsorted, their queue order having won
                                                            // or being checked against a kept sort (below)
-    // auto: batches traced in the queue's order to check the sort their measure kept (sorting_renderer.h), and of
+    // auto: batches traced in the queue's order to check the sort their measure kept (sort_auto.h), and of
     // those the ones where the sort tested at least as many pairs, so the queue's order is taken until the next
     // measure.
     std::uint64_t checked_batches = 0, sorts_dropped = 0;

@@ -8,28 +8,10 @@
 #include "whitted.h"
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
+#include "tests/cutout_scenes.h"
 
 namespace rt {
 namespace {
-
-// One triangle (0,0,0) (1,0,0) (0,1,0) with uvs equal to its xy, and one material.
-Scene one_triangle(const Material& m) {
-    Scene s;
-    s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    s.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
-    s.uvs = {{0, 0}, {1, 0}, {0, 1}};
-    s.material_ids = {0};
-    s.materials = {m};
-    return s;
-}
-
-Material masked(float factor_alpha, float cutoff) {
-    Material m;
-    m.base_color.a = factor_alpha;
-    m.alpha_mode = AlphaMode::Mask;
-    m.alpha_cutoff = cutoff;
-    return m;
-}
 
 TEST(Opacity, FactorAlphaOnlyIsOpaqueExactlyAtTheCutoff) {
     EXPECT_TRUE(surface_opaque(one_triangle(masked(0.5f, 0.5f)), 0, 0.2f, 0.2f));   // glTF: >= cutoff is opaque

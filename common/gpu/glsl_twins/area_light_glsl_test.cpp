@@ -17,7 +17,7 @@
 #include "common/gpu/testing/glsl_test_harness.h"
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
-#include "common/gpu/pipeline/wavefront.h"
+#include "common/gpu/testing/pipeline_fixture.h"
 
 namespace rt::gpu {
 namespace {
@@ -178,14 +178,9 @@ TEST(AreaLightsCost, ScenesWithoutThemCompileNoCodeAndUploadNoBytes) {
         const Scene scene = flatten(make_builtin_scene(name), {});
         GpuScene gpu;
         gpu.upload(scene);
-        RenderSettings settings;
-        settings.width = 16;
-        settings.height = 12;
-        settings.effects = analyze_effects(scene);
-        Wavefront wavefront(Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
-        wavefront.begin_frame(gpu, settings);
+        const ShaderDefines defines = compiled_defines(gpu, fixture_settings(scene, 16, 12));
         const bool area = std::string(name) == "soft_shadows";
-        EXPECT_EQ(wavefront.defines().count("RT_AREA_LIGHTS"), area ? 1u : 0u);
+        EXPECT_EQ(defines.count("RT_AREA_LIGHTS"), area ? 1u : 0u);
         EXPECT_EQ(gpu.area_light_count(), area ? 1u : 0u);
         std::size_t without = 0;
         for (const Buffer* b : {&gpu.positions(), &gpu.normals(), &gpu.uvs(), &gpu.material_ids(), &gpu.materials(),

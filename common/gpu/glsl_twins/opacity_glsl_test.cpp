@@ -12,7 +12,7 @@
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/testing/glsl_test_harness.h"
-#include "common/gpu/pipeline/wavefront.h"
+#include "common/gpu/testing/pipeline_fixture.h"
 
 namespace rt::gpu {
 namespace {
@@ -92,7 +92,7 @@ void test_main() {
     EXPECT_GT(at_cutoff, 100u) << "opacities exactly at the cutoff are in the sample";
 }
 
-// The frame of `scene` through the shared pipeline with stage 02's traversal, primary rays traced.
+// The frame of `scene` through the shared pipeline (the fixture's traversal), primary rays traced.
 struct Frame {
     Image image;
     RayCounters counters;
@@ -101,19 +101,13 @@ struct Frame {
     std::vector<std::string> programs;
 };
 Frame render(const Scene& scene, const Effects& effects) {
-    RenderSettings settings;
-    settings.width = 64;
-    settings.height = 48;
+    RenderSettings settings = fixture_settings(scene, 64, 48);
     settings.effects = effects;
     settings.record_hits = true;
     GpuScene gpu_scene;
     gpu_scene.upload(scene);
-    Wavefront wavefront({"02_raster_hybrid/shaders/brute_force.glsl", {}, {}});
-    wavefront.begin_frame(gpu_scene, settings);
-    wavefront.trace_camera_sample(glm::vec2(0.5f));
-    FrameResult result;
-    wavefront.finish_frame(result);
-    return {result.image, result.stats.counters, result.hits, wavefront.defines(), wavefront.programs()};
+    TracedFrame f = traced_frame(gpu_scene, settings);
+    return {f.result.image, f.result.stats.counters, f.result.hits, f.defines, f.programs};
 }
 
 TEST(OpacityGlsl, SceneWithoutCutoutsCompilesNothingForThemAndEveryHitPassingGivesTheSameFrame) {

@@ -19,7 +19,7 @@
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/gpu/gl/shader.h"
-#include "common/gpu/pipeline/wavefront.h"
+#include "common/gpu/testing/pipeline_fixture.h"
 
 namespace rt::gpu {
 namespace {
@@ -130,13 +130,7 @@ Variant variant(const std::string& builtin) {
     const Scene scene = flatten(make_builtin_scene(builtin), {});
     GpuScene gpu;
     gpu.upload(scene);
-    RenderSettings settings;
-    settings.width = 16;
-    settings.height = 12;
-    settings.effects = analyze_effects(scene);
-    Wavefront wavefront(Traversal{"02_raster_hybrid/shaders/brute_force.glsl", {}, {}, {}, {}});
-    wavefront.begin_frame(gpu, settings);
-    return {wavefront.defines(), gpu.normals().size()};
+    return {compiled_defines(gpu, fixture_settings(scene, 16, 12)), gpu.normals().size()};
 }
 
 TEST(SurfaceEffectsCost, ScenesWithoutThemCompileNoCodeAndUploadNoTangents) {

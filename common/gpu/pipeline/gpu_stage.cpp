@@ -13,26 +13,29 @@
 namespace rt::gpu {
 
 struct GpuStage::Shared {
-    explicit Shared(Traversal traversal) : wavefront(std::move(traversal)) {}
+    explicit Shared(Traversal& traversal) : wavefront(traversal) {}
     GpuScene scene;
     Wavefront wavefront;
     GpuTimer timer;
 };
 
-GpuStage::GpuStage(Traversal traversal) : traversal_(std::move(traversal)) {}
-
-void GpuStage::set_traversal(Traversal traversal) {
-    if (shared_) throw std::logic_error("GpuStage::set_traversal after the first frame");
-    traversal_ = std::move(traversal);
-}
+GpuStage::GpuStage(std::unique_ptr<PrimaryVisibility> primary, std::unique_ptr<Traversal> traversal)
+    : primary_(std::move(primary)), traversal_(std::move(traversal)) {}
 
 GpuStage::~GpuStage() {
     shared_.reset();   // GL objects go before the context
+    traversal_.reset();
+    primary_.reset();
 }
 
 void GpuStage::add_options(CLI::App& app) {
     add_gpu_options(app, gpu_options);
+    traversal_->add_options(app);
     app_ = &app;
+}
+
+std::string GpuStage::unsupported(const Scene& scene, const RenderSettings& settings) const {
+    return traversal_->unsupported(scene, settings);
 }
 
 void GpuStage::initialize() {
@@ -56,24 +59,6 @@ std::string GpuStage::renderer_name() const {
     if (context_.valid()) return context_.renderer();
     const GLubyte* name = glGetString ? glGetString(GL_RENDERER) : nullptr;
     return name ? reinterpret_cast<const char*>(name) : "unknown";
-}
-
-GpuScene& GpuStage::gpu_scene() { return shared_->scene; }
-Wavefront& GpuStage::wavefront() { return shared_->wavefront; }
-GpuTimer& GpuStage::timer() { return shared_->timer; }
-
-void GpuStage::build(const Scene&, const RenderSettings&) {}
-
-double GpuStage::pass_ms(const FrameResult& result, const std::string& phase) {
-    const auto times = result.extra.find("pass_time_ms");
-    if (times == result.extra.end()) return 0.0;
-    const auto ms = times->find(phase);
-    return ms == times->end() ? 0.0 : ms->get<double>();
-}
-
-void GpuStage::add_syncs(FrameResult& result, std::uint64_t syncs) {
-    nlohmann::json& total = result.extra["gpu_cpu_syncs"];
-    total = (total.is_number_unsigned() ? total.get<std::uint64_t>() : 0u) + syncs;
 }
 
 void GpuStage::add_phase_times(const std::vector<std::pair<std::string, double>>& phases, FrameStats& stats) {
@@ -105,7 +90,7 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
         }
     }
     if (context_.valid()) context_.make_current();
-    if (!shared_) shared_ = std::make_unique<Shared>(traversal_);
+    if (!shared_) shared_ = std::make_unique<Shared>(*traversal_);
     Shared& s = *shared_;
     s.timer.reset();
     s.wavefront.timer = &s.timer;
@@ -118,14 +103,16 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
         s.scene.upload(scene);
     }
     s.wavefront.begin_frame(s.scene, settings);   // compiles the passes when the variant changes
-    build(scene, settings);
+    const FrameInputs frame{scene, settings, s.scene, s.timer, !primary_->rasterized()};
+    traversal_->build(frame);
     {
         // Progress over every sample's 8x8 tiles, shown once the frame has taken a second (not in a window, whose
         // title says what a frame costs; not with --quiet).
         const long tiles = long((settings.width + 7) / 8) * long((settings.height + 7) / 8) * long(settings.spp);
         Progress progress(app_ ? app_->get_name() : "gpu stage", tiles, !settings.quiet && !viewer_);
         s.wavefront.progress = &progress;
-        for (const glm::vec2& offset : pixel_sample_offsets(settings.spp)) render_sample(scene, settings, offset);
+        for (const glm::vec2& offset : pixel_sample_offsets(settings.spp))
+            primary_->render_sample(frame, s.wavefront, offset);
         s.wavefront.progress = nullptr;
         progress.finish();
     }
@@ -135,7 +122,7 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     const std::vector<std::pair<std::string, double>> phases = s.timer.results();
     add_phase_times(phases, result.stats);
     result.stats.compile_ms = shader_compile_ms() - compile_before;
-    if (rasterizes_primary_rays()) result.stats.rasterized_rays = result.stats.counters.rays[int(RayKind::Primary)];
+    if (primary_->rasterized()) result.stats.rasterized_rays = result.stats.counters.rays[int(RayKind::Primary)];
     nlohmann::json pass_times = nlohmann::json::object();
     for (const auto& [phase, ms] : phases) pass_times[phase] = ms;
     result.extra["pass_time_ms"] = pass_times;
@@ -146,13 +133,15 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     for (const auto& [k, v] : s.wavefront.defines()) defines[k] = v;
     result.extra["shader_defines"] = defines;
     std::vector<std::string> programs = s.wavefront.programs();
-    for (std::string& p : stage_programs()) programs.push_back(std::move(p));
+    for (std::vector<std::string> own : {primary_->programs(), traversal_->programs()})
+        for (std::string& p : own) programs.push_back(std::move(p));
     result.extra["programs"] = programs;
-    // The frame's read-backs (each a wait for the GPU): the pipeline's here; a stage that reads back adds its own
-    // in add_stage_stats (and says how many in its own section).
-    result.extra["gpu_cpu_syncs"] = s.wavefront.syncs();
-    end_frame();
-    add_stage_stats(result);
+    // The traversal's stats section; the frame's read-backs (each a wait for the GPU) are the pipeline's and the
+    // traversal's (which says how many in its own section).
+    traversal_->end_frame();
+    FrameReport report{result};
+    traversal_->report(report);
+    result.extra["gpu_cpu_syncs"] = s.wavefront.syncs() + report.syncs;
 
     if (viewer_) {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

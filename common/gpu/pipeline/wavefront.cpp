@@ -14,22 +14,15 @@ namespace rt::gpu {
 
 using namespace wavefront_detail;
 
-Wavefront::Wavefront(Traversal traversal)
-    : traversal_(std::move(traversal)),
+Wavefront::Wavefront(Traversal& traversal)
+    : traversal_(traversal),
       compact_(Program::compute("common/shaders/wavefront/compact_records.comp")),
-      counters_(16) {
-    // One kind of traversal: GLSL for the passes it does not replace, or batches replacing both; never GLSL that no
-    // pass would compile.
-    const bool batches = traversal_.trace_batch && traversal_.shadow_batch;
-    if (batches && !traversal_.glsl.empty())
-        throw std::logic_error("Traversal: " + traversal_.glsl + " is never compiled when both batch hooks are set");
-    if (!batches && traversal_.glsl.empty())
-        throw std::logic_error("Traversal: a GLSL traversal is needed for the passes without a batch hook");
-}
+      counters_(16) {}
 
 void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& settings) {
     settings_ = settings;
     pixels_ = std::size_t(settings.width) * std::size_t(settings.height);   // before set_uniforms (wf_watch_base)
+    triangles_ = scene.triangle_count();
     lights_ = unsigned(scene.light_count());
     punctual_lights_ = unsigned(scene.punctual_light_count());
     light_cells_ = scene.area_light_count() > 0 ? settings.light_grid.cells() : 1;
@@ -64,7 +57,7 @@ void Wavefront::begin_frame(const GpuScene& scene, const RenderSettings& setting
     if (scene.ambient() == AmbientModel::None) defines.insert_or_assign("RT_AMBIENT_NONE", std::string("1"));
     if (scene.ambient() == AmbientModel::Hemisphere)
         defines.insert_or_assign("RT_AMBIENT_HEMISPHERE", std::string("1"));   // shading.glsl, ambient_light
-    for (const auto& [k, v] : traversal_.defines) defines.insert_or_assign(k, v);
+    for (const auto& [k, v] : traversal_.defines()) defines.insert_or_assign(k, v);
     std::string key;
     for (const auto& [k, v] : defines) key.append(k).append("=").append(v).append(";");
     if (key != compiled_key_) {
@@ -113,20 +106,22 @@ Program Wavefront::compile(const std::string& pass, bool with_traversal) const {
     if (pass == "shadow.comp") defines.insert_or_assign("RT_SHADOW_RAYS", std::string("1"));
     // The traversal first (it defines trace_closest / trace_any), then the pass that calls it.
     std::string source = "// ";
-    source.append(file).append(" with the traversal ").append(traversal_.glsl).append("\n");
-    source.append("#include \"").append(traversal_.glsl).append("\"\n");
+    const std::string glsl = traversal_.glsl();
+    source.append(file).append(" with the traversal ").append(glsl).append("\n");
+    source.append("#include \"").append(glsl).append("\"\n");
     source.append("#include \"").append(file).append("\"\n");
     std::string name = file;
-    name.append(" + ").append(traversal_.glsl);
+    name.append(" + ").append(glsl);
     return Program::compute_source(name, source, defines);
 }
 
 void Wavefront::compile_programs() {
+    const bool batches = traversal_.glsl().empty();   // a batch traversal replaces the trace and shadow passes
     shade_ = compile("shade.comp", false);
     resolve_ = compile("resolve.comp", false);
-    shadow_ = shadows_ && !traversal_.shadow_batch ? compile("shadow.comp", true) : Program();
+    shadow_ = shadows_ && !batches ? compile("shadow.comp", true) : Program();
     shadow_collect_ = shadows_ ? compile("shadow_collect.comp", false) : Program();
-    trace_ = secondary_ && !traversal_.trace_batch ? compile("trace.comp", true) : Program();
+    trace_ = secondary_ && !batches ? compile("trace.comp", true) : Program();
     trace_collect_ = secondary_ ? compile("trace_collect.comp", false) : Program();
     camera_ = Program();   // compiled on first use (stages that trace primary rays)
 }
@@ -161,7 +156,7 @@ void Wavefront::record_pass(const std::string& name) {
 }
 
 void Wavefront::bind_traversal() const {
-    if (traversal_.bind) traversal_.bind();
+    traversal_.bind();
 }
 
 // The rays of depth `depth` (then the shadow rays spawned at depth - 1); depth <= max_depth + 1.
@@ -230,7 +225,7 @@ void Wavefront::shade_sample(const Program& primary_pass, const Program* deferre
 // Trace programs for camera rays: the stage's trace pass may not be compiled (a scene without reflections and
 // refractions), but camera rays need it.
 void Wavefront::prepare_camera_tracing() {
-    if (!trace_ && !traversal_.trace_batch) {
+    if (!trace_ && !traversal_.glsl().empty()) {
         trace_ = compile("trace.comp", true);
         set_uniforms(trace_);
     }
@@ -396,9 +391,10 @@ void Wavefront::run_traversal(bool shadow, Buffer& rays, std::size_t first, std:
     const char* name = shadow ? "shadow" : "trace";
     const PassTimer timed(timer, name);
     results_.reserve(count * (shadow ? sizeof(std::uint32_t) : sizeof(WavefrontTraceResult)));
-    const auto& batch = shadow ? traversal_.shadow_batch : traversal_.trace_batch;
-    if (batch) {
-        batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this, std::move(runs)});
+    if (traversal_.glsl().empty()) {
+        traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this,
+                                std::move(runs), triangles_},
+                               shadow);
     } else {
         const Program& pass = shadow ? shadow_ : trace_;
         rays.bind(kBindingWavefrontRaysIn);

@@ -6,9 +6,9 @@
 //        ^              └───> reflection/refraction rays ──> trace pass (closest hit) ──┐
 //        └──────────────────────────────── hits of the next bounce <───────────────────┘
 //
-// The stage supplies two things: the primary hits (every GPU stage rasterizes them by default, as stage 02 does;
-// stage 03 with --primary trace traces camera rays with trace_camera_sample) and the traversal: a GLSL file that
-// defines
+// The stage supplies two things: the primary hits (primary_visibility.h: every GPU stage rasterizes them by default,
+// as stage 02 does; stage 03 with --primary trace traces camera rays with trace_camera_sample) and the traversal
+// (traversal.h): a GLSL file that defines
 //
 //   bool trace_closest(Ray ray, out Hit hit);   // the nearest hit with 0 < t < ray.tmax (hit.triangle = -1 if none)
 //   bool trace_any(Ray ray);                    // whether anything is hit with 0 < t < ray.tmax (may stop early)
@@ -16,8 +16,8 @@
 // and calls wf_count_tests(n) for the ray/triangle tests it makes. It should
 // #include "common/shaders/wavefront/wavefront.glsl" (rays, hits, the counting hook; RT_INTERSECT_METHOD says which ray/triangle test to use) and keep its own buffers
 // at WF_BINDING_TRAVERSAL_FIRST and up. The pipeline compiles its trace and shadow passes with that file included
-// first. A stage that traces a whole queue at once (stages 04-05: many dispatches per pass) supplies trace_batch
-// and shadow_batch instead, which write one result per ray (BatchTraceInputs).
+// first. A traversal that traces a whole queue at once (stages 02, 04, 05: many dispatches per pass) has no GLSL file
+// and a trace_batch instead, which writes one result per ray (BatchTraceInputs).
 //
 // Queues are ordered, never appended to: each pass writes its outputs to fixed slots and a prefix sum packs them
 // (docs/gpu.md, "Queue order"), so queue contents, stats and images are the same on every run. Work is done in
@@ -48,6 +48,7 @@
 #include "common/gpu/gl/bindings.h"
 #include "common/gpu/gl/buffer.h"
 #include "gpu_scene.h"
+#include "traversal.h"
 #include "common/gpu/primitives/scan.h"
 #include "common/gpu/gl/shader.h"
 
@@ -84,50 +85,13 @@ static_assert(sizeof(WavefrontTraceResult) == 16);
 
 class Wavefront;
 
-// Consecutive rays of a batch of one kind (and, for shadow rays, one light). Every kind a shade pass spawns, and every
-// light's shadow rays, has its own block of output slots (shade.comp), so the queues hold them in runs, and the
-// pipeline knows each run's length from the compaction's read-back of its block boundaries: a stage that builds a
-// structure per run (stage 04's hierarchies) reads nothing back to find them.
-struct RayRun {
-    std::size_t first = 0, count = 0;   // rays [first, first + count) of the batch (0 = its first ray)
-    RayKind kind = RayKind::Primary;
-    std::uint32_t light = 0;            // shadow rays: the light they go to
-};
-
 // The maximal runs of rays[first, first + count) (from `first`): what the pipeline hands a batch traversal for them,
 // worked out from the rays themselves (for callers outside the pipeline: tests).
 std::vector<RayRun> ray_runs(const std::vector<WavefrontRay>& rays, std::size_t first, std::size_t count);
 
-// What a batch traversal gets for one pass: trace rays[first, first + count) (WavefrontRay) and write result i for
-// ray first + i: WavefrontTraceResult (trace_batch, closest hit) or a uint, 1 = occluded (shadow_batch, any hit).
-// It must add its ray/triangle tests to RT_COUNTER_INTERSECTION_TESTS (the counters stay bound at
-// RT_BINDING_COUNTERS) and, when tests_per_pixel is given, to tests_per_pixel[ray.pixel] (wf_flush_tests does both
-// in a pass that includes wavefront.glsl). Every buffer it is given fits one storage block.
-struct BatchTraceInputs {
-    const Buffer& rays;
-    std::size_t first = 0, count = 0;
-    Buffer& results;
-    const Buffer* tests_per_pixel = nullptr;   // uint per pixel, only when settings.record_tests_per_pixel
-    const Wavefront& wavefront;                // defines(), set_uniforms() for the batch's own programs
-    std::vector<RayRun> runs;                  // the batch's rays as maximal runs, in order, covering [0, count)
-};
-
-// The stage's traversal (see above).
-// Either a GLSL traversal (glsl, compiled into the trace and shadow passes) or a batch traversal (trace_batch and
-// shadow_batch, with glsl empty); the Wavefront refuses a mix where the GLSL would never be compiled.
-struct Traversal {
-    std::string glsl;                 // relative to the shader root, e.g. "02_raster_hybrid/shaders/brute_force.glsl"
-    ShaderDefines defines;            // extra defines it needs
-    std::function<void()> bind;       // binds its buffers before the trace and shadow passes (may be empty)
-    // Whole-queue traversals replacing the per-ray trace and shadow passes (may be empty).
-    std::function<void(const BatchTraceInputs&)> trace_batch, shadow_batch;
-    // --pixel: what the traversal's wf_count_steps counts per ray ("" when it counts none; RayWork::steps).
-    std::string steps;
-};
-
 class Wavefront {
 public:
-    explicit Wavefront(Traversal traversal);
+    explicit Wavefront(Traversal& traversal);   // kept by reference: it must outlive the pipeline
 
     // Start of a frame: compiles the passes the settings call for (kept while they stay the same), sizes the
     // per-pixel buffers, clears the image and the counters, binds the scene. The scene must be uploaded.
@@ -239,10 +203,11 @@ private:
     std::size_t tests_words() const;
     void drain_watch();
 
-    Traversal traversal_;
+    Traversal& traversal_;
     RenderSettings settings_;
     std::size_t pixels_ = 0;
     int samples_ = 0;
+    std::size_t triangles_ = 0;      // the uploaded scene's (a batch traversal's BatchTraceInputs::triangles)
     unsigned lights_ = 0;            // punctual and area (GpuScene::light_count)
     unsigned punctual_lights_ = 0;
     std::size_t light_cells_ = 1;    // an area light's cells (settings.light_grid), with area lights

@@ -103,7 +103,7 @@ void Wavefront::finish_frame(FrameResult& result) {
     }
     result.ray_work = std::move(ray_work_);
     ray_work_.clear();
-    result.ray_work_steps = traversal_.steps;
+    result.ray_work_steps = traversal_.steps();
 }
 
 }  // namespace rt::gpu
