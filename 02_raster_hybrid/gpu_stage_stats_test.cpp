@@ -3,6 +3,8 @@
 // reported apart (and only when something was compiled).
 #include <gtest/gtest.h>
 
+#include "common/gpu/testing/frame_counts.h"
+#include "common/gpu/testing/same_frame_expectations.h"
 #include "common/gpu/testing/gpu_test_context.h"
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
@@ -84,6 +86,45 @@ TEST(GpuStageStats, PhasesAddUpToTheStatsTimes) {
     EXPECT_EQ(s.trace_ms, 8.0 + 16.0);
     EXPECT_EQ(s.shade_ms, 32.0 + 64.0 + 128.0);
     EXPECT_EQ(s.compile_ms, 0.0) << "compilation is wall clock, never a GPU phase";
+}
+
+// A still scene (Scene::still_id) stays on the GPU: its next frames upload none of it and equal a fresh upload's,
+// a moved camera included (the viewer hands over the same scene with another camera); a scene not marked still, or
+// marked with another id, is uploaded again.
+TEST(GpuStageStats, AStillSceneStaysOnTheGpuAndGivesAFreshUploadsFrame) {
+    gpu::test_context();
+    Frame f = whitted_frame(40, 30);
+    f.settings.record_hits = true;
+    f.scene.still_id = 7;
+    HybridRenderer stage;
+    const auto scene_bytes = [](const FrameResult& r) { return r.extra.at("upload_bytes").at("scene").get<std::size_t>(); };
+    const FrameResult first = stage.render(f.scene, f.settings);
+    EXPECT_GT(scene_bytes(first), 0u);
+    Scene moved = f.scene;
+    moved.camera.position += 0.25f * moved.camera.right;
+    const FrameResult resident = stage.render(moved, f.settings);
+    EXPECT_EQ(scene_bytes(resident), 0u);
+    Scene fresh = moved;
+    fresh.still_id = 0;
+    const FrameResult uploaded = HybridRenderer().render(fresh, f.settings);
+    expect_same_frame(resident, uploaded, "resident scene, moved camera");
+    EXPECT_NE(first.image.pixels, resident.image.pixels);   // the camera did move
+
+    EXPECT_GT(scene_bytes(stage.render(fresh, f.settings)), 0u);   // not still: uploaded every frame
+    EXPECT_GT(scene_bytes(stage.render(fresh, f.settings)), 0u);
+    Scene other = f.scene;
+    other.still_id = 8;
+    EXPECT_GT(scene_bytes(stage.render(other, f.settings)), 0u);   // another still scene
+    EXPECT_EQ(scene_bytes(stage.render(other, f.settings)), 0u);
+}
+
+// What a whitted frame asks of the GPU (common/gpu/gl/gl_counters.h), pinned so that a change to it shows here; the
+// second frame finds the still scene resident and uploads none of it.
+TEST(GpuStageStats, WhittedFrameCountsWhatItAsksOfTheGpu) {
+    HybridRenderer stage;
+    const auto counts = gpu::whitted_frame_counts(stage);
+    EXPECT_EQ(counts[0], (gpu::FrameCounts{66, 12, 4, 550456, 128}));
+    EXPECT_EQ(counts[1], (gpu::FrameCounts{66, 12, 4, 0, 128}));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "common/gpu/testing/glsl_test_harness.h"
 #include "common/gpu/pipeline/gpu_scene.h"
 #include "common/gpu/testing/gpu_test_context.h"
+#include "common/gpu/testing/frame_counts.h"
 #include "common/gpu/testing/same_frame_expectations.h"
 #include "common/gpu/gl/storage_limit.h"
 #include "common/scene/builtin/builtin_scenes.h"
@@ -263,6 +264,15 @@ TEST(GridRenderer, NothingIsBuiltWhenNoRayIsTraced) {
     const FrameResult r = render_grid(s, settings, {});
     EXPECT_EQ(r.extra["grid"]["built"], false);
     EXPECT_EQ(r.stats.build_ms, 0.0);
+}
+
+// What a whitted frame asks of the GPU (common/gpu/gl/gl_counters.h), pinned so that a change to it shows here; the
+// second frame finds the still scene resident and uploads none of it.
+TEST(GridRenderer, WhittedFrameCountsWhatItAsksOfTheGpu) {
+    GridRenderer stage;
+    const auto counts = gpu::whitted_frame_counts(stage);
+    EXPECT_EQ(counts[0], (gpu::FrameCounts{82, 15, 6, 550456, 224}));
+    EXPECT_EQ(counts[1], (gpu::FrameCounts{82, 15, 6, 0, 224}));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "02_raster_hybrid/hybrid_renderer.h"
 #include "common/gpu/testing/gpu_test_context.h"
+#include "common/gpu/testing/frame_counts.h"
 #include "common/gpu/testing/same_frame_expectations.h"
 #include "common/scene/builtin/builtin_scenes.h"
 #include "ray_hierarchy_renderer.h"
@@ -121,6 +122,15 @@ TEST(RayHierarchyRenderer, ATinyStorageLimitGivesStage02sFrame) {
         ASSERT_EQ(a[i].triangle, b[i].triangle) << "ray " << i;
         ASSERT_EQ(std::bit_cast<std::uint32_t>(a[i].t), std::bit_cast<std::uint32_t>(b[i].t)) << "ray " << i;
     }
+}
+
+// What a whitted frame asks of the GPU (common/gpu/gl/gl_counters.h), pinned so that a change to it shows here; the
+// second frame finds the still scene resident and uploads none of it.
+TEST(RayHierarchyRenderer, WhittedFrameCountsWhatItAsksOfTheGpu) {
+    RayHierarchyRenderer stage;
+    const auto counts = gpu::whitted_frame_counts(stage);
+    EXPECT_EQ(counts[0], (gpu::FrameCounts{417, 24, 5, 550456, 17624}));
+    EXPECT_EQ(counts[1], (gpu::FrameCounts{417, 24, 5, 0, 17624}));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/gpu/testing/gpu_test_context.h"
+#include "common/gpu/testing/frame_counts.h"
 #include "common/gpu/testing/same_frame_expectations.h"
 #include "common/scene/builtin/builtin_scenes.h"
 #include "common/scene/effects.h"
@@ -333,6 +334,16 @@ TEST(RaySortingRenderer, ProbeEveryFrameSortsEveryBatchEveryFrame) {
         EXPECT_EQ(second.extra["ray_sorting"]["batches"][kind]["batches"],
                   first.extra["ray_sorting"]["batches"][kind]["batches"]) << kind;
     }
+}
+
+// What a whitted frame asks of the GPU (common/gpu/gl/gl_counters.h), pinned so that a change to it shows here; the
+// second frame finds the still scene resident and uploads none of it. (The first frame of --sort auto measures every
+// batch's orders: 308 dispatches more than the second, which takes the remembered orders.)
+TEST(RaySortingRenderer, WhittedFrameCountsWhatItAsksOfTheGpu) {
+    RaySortingRenderer stage;
+    const auto counts = gpu::whitted_frame_counts(stage);
+    EXPECT_EQ(counts[0], (gpu::FrameCounts{725, 24, 7, 550456, 18456}));
+    EXPECT_EQ(counts[1], (gpu::FrameCounts{417, 24, 7, 0, 18184}));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "driver.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -199,6 +200,12 @@ bool export_scene(const std::string& stage, const Options& options, const SceneA
     return options.out.empty() && options.stats.empty();
 }
 
+// A new Scene::still_id: one per still scene a run renders (the GPU stages keep the scene of each id resident).
+std::uint64_t next_still_id() {
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+}
+
 // The scene at the frame's time (past the requested frames, an animation loops), with its world: the environment,
 // or the default world for a file that says nothing of its world (most glTF files; docs/shading.md).
 Scene frame_scene(const std::string& stage, const Options& options, const Input& in, int frame, float duration,
@@ -343,8 +350,10 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     // scenes loop.
     for (int frame = 0; frame < options.frames || renderer.interactive(); ++frame) {
         const bool shown_only = frame >= options.frames;
-        float time = 0.0f;
-        scene = frame_scene(stage, options, in, frame, duration, totals.dropped, time);
+        float time = float(frame / options.fps);
+        // A still scene is the same in every frame: flattened once, and kept on the GPU by the GPU stages.
+        if (frame == 0 || scene.animated) scene = frame_scene(stage, options, in, frame, duration, totals.dropped, time);
+        if (frame == 0 && !scene.animated) scene.still_id = next_still_id();
         const RenderSettings settings = frame_settings(options, scene, shown_only);
         totals.effect_names = settings.effects.names();
         if (frame == 0)
@@ -359,10 +368,16 @@ int run(const std::string& stage, int argc, char** argv, Renderer& renderer) {
         write_frame(stage, options, scene, settings, frame, result, files, path);
         if (!options.render.quiet) print_summary(stage, label, settings, result.stats, path);
         totals.total.add(result.stats);
-        if (options.frames > 1)
+        if (options.frames > 1) {
+            // Per frame also what the CPU asked of the GPU (a GPU stage's counters), which differs from frame to frame
+            // (a still scene is uploaded with the first only).
+            nlohmann::json per_frame = {{"time_s", time}};
+            for (const char* key : {"gl_dispatches", "read_backs", "upload_bytes"})
+                if (result.extra.contains(key)) per_frame[key] = result.extra[key];
             totals.frames.push_back(make_stats_json(stage, label, settings.width, settings.height,
                                                     renderer.renderer_name(), totals.effect_names, result.stats,
-                                                    {{"time_s", time}}));
+                                                    per_frame));
+        }
         totals.last_extra = result.extra;
     }
     write_stats(stage, options, in, scene, renderer.renderer_name(), totals, files);

@@ -283,6 +283,9 @@ struct Scene {
     AmbientModel ambient = AmbientModel::Constant;
     // The asset has animations: a later time is another frame (the viewer keeps rendering; a still one idles).
     bool animated = false;
+    // Nonzero: this scene is handed, unchanged but for its camera, to frame after frame (the driver does so for a
+    // still asset), so a GPU stage keeps it on the GPU and uploads it once (gpu_scene.h). 0: uploaded every frame.
+    std::uint64_t still_id = 0;
     std::size_t triangle_count() const { return material_ids.size(); }
     std::size_t light_count() const { return lights.size() + area_lights.size(); }   // punctual and area
 };

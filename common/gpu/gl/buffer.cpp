@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "bindings.h"
+#include "gl_counters.h"
 
 namespace rt::gpu {
 
@@ -13,6 +14,7 @@ Buffer::Buffer(std::size_t bytes, const void* data, GLenum usage) : usage_(usage
     // Never allocate zero bytes: a zero-sized buffer cannot be bound as a range and some drivers dislike it.
     if (data && bytes > 0) {
         glNamedBufferData(id_, GLsizeiptr(bytes), data, usage_);
+        gl_counters().upload_bytes += bytes;
     } else {
         glNamedBufferData(id_, GLsizeiptr(std::max<std::size_t>(bytes, 16)), nullptr, usage_);
     }
@@ -45,7 +47,9 @@ void Buffer::upload(const void* data, std::size_t bytes, std::size_t offset) {
     if (offset + bytes > size_)
         throw std::out_of_range("Buffer::upload: " + std::to_string(bytes) + " bytes at " + std::to_string(offset) +
                                 " exceed the size " + std::to_string(size_));
-    if (bytes) glNamedBufferSubData(id_, GLintptr(offset), GLsizeiptr(bytes), data);
+    if (!bytes) return;
+    glNamedBufferSubData(id_, GLintptr(offset), GLsizeiptr(bytes), data);
+    gl_counters().upload_bytes += bytes;
 }
 
 void Buffer::download(void* data, std::size_t bytes, std::size_t offset) const {
@@ -56,6 +60,7 @@ void Buffer::download(void* data, std::size_t bytes, std::size_t offset) const {
     // Make shader writes visible to the read-back.
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(id_, GLintptr(offset), GLsizeiptr(bytes), data);
+    ++gl_counters().read_backs;
     check_gl("Buffer download");
 }
 
@@ -137,6 +142,7 @@ void GpuTimer::end() {
 
 std::vector<std::pair<std::string, double>> GpuTimer::results() {
     std::vector<std::pair<std::string, double>> out;
+    if (!records_.empty()) ++gl_counters().read_backs;   // one wait: the queries are read in order
     for (const Record& r : records_) {
         if (!r.stop) continue;
         GLuint64 t0 = 0, t1 = 0;

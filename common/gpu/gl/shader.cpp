@@ -14,6 +14,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "common/scene/effects.h"
+#include "gl_counters.h"
 
 namespace fs = std::filesystem;
 
@@ -344,12 +345,14 @@ void Program::set(const char* name, const glm::mat4& m) const {
 void Program::dispatch(unsigned x, unsigned y, unsigned z) const {
     glUseProgram(id_);
     glDispatchCompute(x, y, z);
+    ++gl_counters().dispatches;
 }
 
 void Program::dispatch_indirect(const Buffer& args, std::size_t offset) const {
     glUseProgram(id_);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, args.id());
     glDispatchComputeIndirect(GLintptr(offset));
+    ++gl_counters().dispatches;
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
 }
 

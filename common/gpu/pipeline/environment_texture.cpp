@@ -4,6 +4,7 @@
 
 #include "common/scene/scene.h"
 #include "common/gpu/gl/bindings.h"
+#include "common/gpu/gl/gl_counters.h"
 
 namespace rt::gpu {
 
@@ -31,6 +32,7 @@ void EnvironmentTexture::upload(const std::shared_ptr<const Environment>& enviro
     glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureSubImage2D(texture_, 0, 0, 0, environment->width, environment->height, GL_RGBA, GL_FLOAT,
                         environment->texels.data());
+    gl_counters().upload_bytes += environment->texels.size() * sizeof(environment->texels[0]);
     ++uploads_;
     check_gl("EnvironmentTexture::upload");
 }

@@ -13,6 +13,7 @@
 #include "common/trace/shading.h"
 #include "common/trace/texture_transform.h"
 #include "common/gpu/gl/bindings.h"
+#include "common/gpu/gl/gl_counters.h"
 #include "common/gpu/gl/storage_limit.h"
 
 namespace rt::gpu {
@@ -103,7 +104,13 @@ std::vector<T> convert(const std::vector<U>& in, F f) {
 }
 }  // namespace
 
-void GpuScene::upload(const Scene& scene) {
+std::size_t GpuScene::upload(const Scene& scene) {
+    if (scene.still_id != 0 && scene.still_id == resident_id_) {
+        upload_camera(scene.camera, scene.background);
+        return 0;
+    }
+    resident_id_ = 0;   // until this upload is whole
+    const std::uint64_t bytes_before = gl_counters().upload_bytes;
     const std::size_t vertices = scene.positions.size();
     if (scene.normals.size() != vertices || scene.uvs.size() != vertices || vertices != scene.triangle_count() * 3)
         throw std::invalid_argument("GpuScene::upload: positions/normals/uvs/material_ids sizes disagree");
@@ -141,6 +148,7 @@ void GpuScene::upload(const Scene& scene) {
     upload_textures(scene);
     environment_.upload(scene.environment);
 
+    const std::size_t scene_bytes = std::size_t(gl_counters().upload_bytes - bytes_before);
     block_.camera = to_gpu(scene.camera);
     block_.background = scene.background;
     block_.triangle_count = std::uint32_t(scene.triangle_count());
@@ -152,6 +160,8 @@ void GpuScene::upload(const Scene& scene) {
     if (!ubo_) ubo_ = Buffer(sizeof(GpuSceneBlock));
     ubo_.upload(&block_, sizeof block_);
     check_gl("GpuScene::upload");
+    resident_id_ = scene.still_id;
+    return scene_bytes;
 }
 
 void GpuScene::upload_camera(const Camera& camera, const glm::vec3& background) {

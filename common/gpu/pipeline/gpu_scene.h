@@ -84,10 +84,12 @@ GpuAreaLight to_gpu(const AreaLight& light);
 
 class GpuScene {
 public:
-    // Uploads everything (buffers are reallocated only when their sizes change). Needs a current context. Throws
-    // SceneError (one line naming the size and the limit: the stages exit 2) when the textures do not fit one
-    // shader storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
-    void upload(const Scene& scene);
+    // Uploads everything (buffers are reallocated only when their sizes change), except for a still scene already
+    // here (the same nonzero Scene::still_id as the last upload): then only the scene block (camera, background).
+    // Returns the bytes of the scene itself it sent (0 for a resident one), not counting the scene block. Needs a
+    // current context. Throws SceneError (one line naming the size and the limit: the stages exit 2) when the
+    // textures do not fit one shader storage block (GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
+    std::size_t upload(const Scene& scene);
     // Only the camera and background (a camera animation over a still scene).
     void upload_camera(const Camera& camera, const glm::vec3& background);
     // Binds every SSBO and the scene UBO at their binding points.
@@ -129,6 +131,7 @@ private:
     EnvironmentTexture environment_;   // uploaded only when the scene's map changes
     GpuSceneBlock block_{};
     AmbientModel ambient_ = AmbientModel::Constant;
+    std::uint64_t resident_id_ = 0;    // the still_id of the scene uploaded (0: none, or not still)
 };
 
 }  // namespace rt::gpu

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/app/pixel_samples.h"
+#include "common/gpu/gl/gl_counters.h"
 #include "common/gpu/gl/shader.h"
 
 namespace rt::gpu {
@@ -95,12 +96,15 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     s.timer.reset();
     s.wavefront.timer = &s.timer;
     const double compile_before = shader_compile_ms();
+    const GlCounters start_counts = gl_counters();
     FrameResult result;
 
-    // The scene goes to the GPU once per frame (animated scenes change every frame), then the stage's structure.
+    // The scene goes to the GPU when it changed (a still scene stays resident: gpu_scene.h), then the stage's
+    // structure.
+    std::size_t scene_bytes = 0;
     {
         auto upload = s.timer.scope("upload");
-        s.scene.upload(scene);
+        scene_bytes = s.scene.upload(scene);
     }
     s.wavefront.begin_frame(s.scene, settings);   // compiles the passes when the variant changes
     const FrameInputs frame{scene, settings, s.scene, s.timer, !primary_->rasterized()};
@@ -116,6 +120,7 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
         s.wavefront.progress = nullptr;
         progress.finish();
     }
+    const GlCounters mid_frame = gl_counters();
     s.wavefront.finish_frame(result);   // image, counters, and the hits and per-pixel tests when asked for
 
     // Stats every GPU stage reports.
@@ -142,6 +147,14 @@ FrameResult GpuStage::render(const Scene& requested_scene, const RenderSettings&
     FrameReport report{result};
     traversal_->report(report);
     result.extra["gpu_cpu_syncs"] = s.wavefront.syncs() + report.syncs;
+    // What the CPU asked of the GPU this frame (gl_counters.h): dispatches, waits inside the frame and after its last
+    // pass, and the bytes sent (the scene's, and the rest: the scene block, uniforms of the passes' own buffers).
+    const GlCounters& end = gl_counters();
+    result.extra["gl_dispatches"] = end.dispatches - start_counts.dispatches;
+    result.extra["read_backs"] = {{"mid_frame", mid_frame.read_backs - start_counts.read_backs},
+                                  {"frame_end", end.read_backs - mid_frame.read_backs}};
+    result.extra["upload_bytes"] = {{"scene", scene_bytes},
+                                    {"other", end.upload_bytes - start_counts.upload_bytes - scene_bytes}};
 
     if (viewer_) {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
