@@ -3,8 +3,9 @@
 
 For each output kind and format (--out .png .jpg .exr .hdr, --heatmap, --export .gltf .glb, --stats, --dump-hits,
 --frames 2 --out), on two kinds of failing file system:
-  fsize  the run's file-size limit is 512 bytes (RLIMIT_FSIZE, SIGXFSZ ignored): every write past it fails with
-         EFBIG, as a full disk fails a write with ENOSPC. Runs for any user.
+  fsize  the run's file-size limit is 512 bytes (RLIMIT_FSIZE, SIGXFSZ at its default, as after a shell's
+         `ulimit -f 1`): every write past it must fail with EFBIG, as a full disk fails a write with ENOSPC, not end
+         the run on the signal. Runs for any user.
   tmpfs  a 256 KiB tmpfs filled to the last byte: a real full disk (ENOSPC). Needs root (mount); without it this part
          says why it is skipped, and the fsize part still runs.
 each run must exit 1 with exactly one line, "<stage>: error: cannot write <option> <file>: <cause>", the cause being
@@ -38,7 +39,9 @@ CAUSE = {"fsize": "file too large", "tmpfs": "no space left on device"}
 
 
 def limit_file_size():
-    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)   # a write past the limit fails (EFBIG) instead of killing
+    # As a user's shell runs it after `ulimit -f`: SIGXFSZ at its default (it would end the run); the stage must
+    # turn a write past the limit into its one-line error itself.
+    signal.signal(signal.SIGXFSZ, signal.SIG_DFL)
     resource.setrlimit(resource.RLIMIT_FSIZE, (512, 512))
 
 

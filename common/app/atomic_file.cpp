@@ -82,6 +82,8 @@ std::string create_temporary(const std::string& path) {
     const std::string ext = p.extension().string().substr(0, 16);
     for (int attempt = 0; attempt < 100; ++attempt) {
         const std::string name = (p.parent_path() / ("." + stem + ".tmp-" + random_word(10) + ext)).string();
+        // The user's path in the message, not the temporary's (which is longer by its prefix and random part).
+        if (name.size() >= PATH_MAX) throw std::runtime_error("cannot write " + path + ": path too long");
         remember(name);   // before the file exists, so no signal can leave it behind
         const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
         const int error = errno;

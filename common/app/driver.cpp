@@ -409,6 +409,9 @@ std::string one_printable_line(const std::string& message) {
 
 int run_stage(const std::string& stage, int argc, char** argv, Renderer& renderer) {
     std::signal(SIGPIPE, SIG_IGN);   // a closed stdout is an error on write (see print), not the end of the run
+    // A write past a file-size limit (`ulimit -f`) fails with EFBIG and is reported as every failed write (one line,
+    // exit 1, the temporary removed), instead of SIGXFSZ ending the run with its temporary left behind.
+    std::signal(SIGXFSZ, SIG_IGN);
     // An error is one line whatever a file name in it holds: control characters are written as escapes.
     const auto error = [&](const std::exception& e) {
         std::cerr << stage << ": error: " << one_printable_line(e.what()) << "\n";

@@ -287,7 +287,9 @@ void validate_options(const Options& o) {
     if (!o.out.empty() && !is_supported_image_path(o.out))
         throw std::invalid_argument("unsupported image type for --out: " + o.out + " (use " + supported_image_types() + ")");
     if (!o.export_path.empty()) {
-        const std::string ext = fs::path(o.export_path).extension().string();
+        // Extensions pick a format in any case, for every option (--out o.PNG, --export x.GLB; README "Outputs").
+        std::string ext = fs::path(o.export_path).extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         if (ext != ".gltf" && ext != ".glb") throw std::invalid_argument("--export needs a .gltf or .glb file: " + o.export_path);
     }
     const double pixels = double(o.render.width) * double(o.render.height);

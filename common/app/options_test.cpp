@@ -115,6 +115,24 @@ TEST(NumberValidators, FloatOptionsRefuseBlanksHexAndNonFiniteValuesAndPassOnAnE
     EXPECT_EQ(text, "4");
 }
 
+// One rule for extension case: every output option takes its format's extension in any case.
+TEST(SharedOptions, OutputExtensionsAreTakenInAnyCase) {
+    for (const char* name : {"x.GLB", "x.Gltf", "x.glb"}) {
+        Options o;
+        o.export_path = name;
+        EXPECT_NO_THROW(validate_options(o)) << name;
+    }
+    for (const char* name : {"o.PNG", "o.Png"}) {
+        Options o;
+        o.out = name;
+        o.heatmap = std::string("h_") + name;
+        EXPECT_NO_THROW(validate_options(o)) << name;
+    }
+    Options o;
+    o.export_path = "x.GLBX";
+    EXPECT_THROW(validate_options(o), std::invalid_argument);
+}
+
 TEST(ErrorLines, ControlCharactersInAMessageAreEscapedSoItStaysOneLine) {
     EXPECT_EQ(one_printable_line("cannot read scene a\nb.gltf"), "cannot read scene a\\nb.gltf");
     EXPECT_EQ(one_printable_line(std::string("x\ty\rz\x01\x7f")), "x\\ty\\rz\\x01\\x7f");

@@ -24,6 +24,12 @@ std::string error_text(int error) { return std::system_category().message(error)
 
 std::string describe(const OutputPath& o) { return o.option + " " + o.path; }
 
+// The reason in atomic_file.h's "cannot write PATH: reason", for a message that names the option too.
+std::string reason_of(const std::runtime_error& e, const OutputPath& output) {
+    const std::string what = e.what(), prefix = "cannot write " + output.path + ": ";
+    return what.starts_with(prefix) ? what.substr(prefix.size()) : what;
+}
+
 [[noreturn]] void refuse(const OutputPath& o, const std::string& problem) {
     throw std::invalid_argument(describe(o) + ": " + problem);
 }
@@ -102,9 +108,7 @@ void RunOutputs::reserve(const OutputPath& output) {
     try {
         pending_.push_back({output, create_temporary(output.path)});
     } catch (const std::runtime_error& e) {
-        // create_temporary says "cannot write PATH: reason"; keep the reason.
-        const std::string what = e.what(), prefix = "cannot write " + output.path + ": ";
-        refuse(output, what.starts_with(prefix) ? what.substr(prefix.size()) : what);
+        refuse(output, reason_of(e, output));
     }
 }
 
@@ -124,7 +128,11 @@ void RunOutputs::write(const OutputPath& output, const std::function<void(const 
         std::replace(reason.begin(), reason.end(), '\n', ' ');
         throw std::runtime_error("cannot write " + describe(output) + ": " + reason);
     }
-    commit_temporary(p.temporary, output.path);   // throws "cannot write PATH: reason"
+    try {
+        commit_temporary(p.temporary, output.path);
+    } catch (const std::runtime_error& e) {   // the rename failed (EBUSY, EISDIR, ...): the temporary is gone
+        throw std::runtime_error("cannot write " + describe(output) + ": " + reason_of(e, output));
+    }
     completed_.push_back(output.path);
 }
 

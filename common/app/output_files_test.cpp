@@ -1,5 +1,6 @@
 #include "output_files.h"
 
+#include <climits>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -64,6 +65,15 @@ TEST(AtomicFile, TemporaryInAMissingFolderNamesTheUsersPath) {
               "cannot write " + target.string() + ": No such file or directory");
 }
 
+TEST(AtomicFile, APathTooLongForItsTemporaryNamesTheUsersPath) {
+    // Short enough itself, too long once the temporary's ".w.tmp-XXXXXXXXXX" is added beside it.
+    const fs::path dir = scratch("long_path");
+    std::string target = dir.string() + "/";
+    while (target.size() < PATH_MAX - 12) target += "d/";
+    target += "w.png";
+    EXPECT_EQ(message_of([&] { create_temporary(target); }), "cannot write " + target + ": path too long");
+}
+
 TEST(RunOutputs, KeptOutputsStayAndNoTemporaryRemains) {
     const fs::path dir = scratch("kept");
     {
@@ -90,6 +100,21 @@ TEST(RunOutputs, AFailedRunRemovesEverythingItWrote) {
         EXPECT_EQ(std::string(e.what()), "cannot write --out " + (dir / "a_0001.png").string() + ": disk full");
     }
     EXPECT_EQ(entries(dir), 0u);   // the completed frame, the reserved temporary and the failed one are gone
+}
+
+TEST(RunOutputs, AFailedRenameNamesTheOptionAndLeavesNoTemporary) {
+    // The target became a folder holding a file after the temporary was reserved: the rename fails (EISDIR).
+    const fs::path dir = scratch("rename");
+    RunOutputs files;
+    const std::string target = (dir / "o.png").string();
+    files.reserve({"--out", target});
+    fs::create_directory(target);
+    write_text(fs::path(target) / "inside", "x");
+    const std::string message = message_of([&] {
+        files.write({"--out", target}, [](const std::string& f) { write_text(f, "image"); });
+    });
+    EXPECT_TRUE(message.starts_with("cannot write --out " + target + ": ")) << message;
+    EXPECT_EQ(entries(dir), 1u);   // the folder only: the temporary is gone
 }
 
 TEST(RunOutputs, WriterErrorsNameTheUsersPathNotTheTemporary) {

@@ -198,6 +198,20 @@ TEST(GltfLoad, MorphTargetsApplyAtTheMeshDefaultWeights) {
               (std::vector<glm::vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
     write_text(dir.file("nan.gltf"), gltf("1e39"));   // a weight must fit a float, like every number read
     expect_one_line_scene_error(dir.file("nan.gltf"), "weight 0 is 1e+39, which does not fit a float");
+    // A target's POSITION with fewer entries than the primitive's: the message names both, with both counts.
+    std::string short_target = gltf("1");
+    const auto replace = [&](const std::string& from, const std::string& to) {
+        const std::size_t at = short_target.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        short_target.replace(at, from.size(), to);
+    };
+    replace(R"("targets":[{"POSITION":2,)", R"("targets":[{"POSITION":4,)");
+    replace(R"("type":"VEC3"}],"bufferViews")",
+            R"("type":"VEC3"},{"bufferView":0,"byteOffset":72,"componentType":5126,"count":2,"type":"VEC3"}],)"
+            R"("bufferViews")");
+    write_text(dir.file("short.gltf"), short_target);
+    expect_one_line_scene_error(dir.file("short.gltf"),
+                                "mesh 0 primitive 0 target 0: POSITION has 2 entries but the primitive's POSITION has 3");
 }
 
 TEST(GltfLoad, VertexColoursAreReadClampedAndFlattenedWithWhiteForPrimitivesWithout) {

@@ -63,21 +63,27 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::v
     for (const glm::vec4& v : read_vectors(model, budget(position, name), 3, any, name + " POSITION"))
         out.positions.push_back(glm::vec3(v));
     const std::size_t nv = out.positions.size();
+    // An attribute (of the primitive, or of a morph target: `where`) whose count is not the primitive's positions':
+    // both named, with both counts.
+    const auto counts_differ = [&](const std::string& where, const std::string& key, std::size_t count) {
+        invalid(where + ": " + key + " has " + std::to_string(count) + " entries but " +
+                (where == name ? "POSITION" : "the primitive's POSITION") + " has " + std::to_string(nv));
+    };
 
     if (const int normal = attribute("NORMAL"); normal >= 0) {
         for (const glm::vec4& v : read_vectors(model, budget(normal, name), 3, signed_normalized, name + " NORMAL"))
             out.normals.push_back(glm::vec3(v));
-        if (out.normals.size() != nv) invalid(name + ": NORMAL and POSITION counts differ");
+        if (out.normals.size() != nv) counts_differ(name, "NORMAL", out.normals.size());
     }
     if (const int uv = attribute("TEXCOORD_0"); uv >= 0) {
         const Integers uv_integers = quantized ? Integers::Any : Integers::Normalized;
         for (const glm::vec4& v : read_vectors(model, budget(uv, name), 2, uv_integers, name + " TEXCOORD_0"))
             out.uvs.push_back(glm::vec2(v));
-        if (out.uvs.size() != nv) invalid(name + ": TEXCOORD_0 and POSITION counts differ");
+        if (out.uvs.size() != nv) counts_differ(name, "TEXCOORD_0", out.uvs.size());
     }
     if (const int tangent = attribute("TANGENT"); tangent >= 0) {
         out.tangents = read_vectors(model, budget(tangent, name), 4, signed_normalized, name + " TANGENT");
-        if (out.tangents.size() != nv) invalid(name + ": TANGENT and POSITION counts differ");
+        if (out.tangents.size() != nv) counts_differ(name, "TANGENT", out.tangents.size());
     }
     // Morph targets at the mesh's default weights (glTF 2.0, 3.7.2.2): each target's POSITION, NORMAL and TANGENT
     // displacements, times its weight, add to the base (flatten normalizes the normals). A weight of 0, the default,
@@ -92,7 +98,7 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::v
             const std::vector<glm::vec4> d = read_vectors(model, budget(it->second, target), components,
                                                           quantized ? Integers::Normalized : Integers::None,
                                                           target + " " + key);
-            if (d.size() != nv) invalid(target + ": " + key + " and POSITION counts differ");
+            if (d.size() != nv) counts_differ(target, key, d.size());
             for (std::size_t i = 0; i < nv; ++i)
                 for (int c = 0; c < 3; ++c) base[i][c] += w * d[i][c];
         };
@@ -108,7 +114,7 @@ Primitive Loader::primitive(const tinygltf::Primitive& p, int mode, const std::v
         for (const glm::vec4& c : read_vectors(model, budget(color, name), components, Integers::Normalized,
                                                name + " COLOR_0"))
             out.colors.push_back(components == 3 ? glm::vec4(glm::vec3(c), 1.0f) : c);
-        if (out.colors.size() != nv) invalid(name + ": COLOR_0 and POSITION counts differ");
+        if (out.colors.size() != nv) counts_differ(name, "COLOR_0", out.colors.size());
         // Values from files (docs/shading.md): one that is not finite is refused, one outside [0, 1] clamped.
         bool clamped = false;
         for (glm::vec4& c : out.colors) {
