@@ -30,7 +30,7 @@ struct SortOptions {
     unsigned fine_direction_bits = 8;    // --fine-direction-bits: --sort auto's second reflection/refraction key
                                          // (0 or = direction_bits: none)
     unsigned probe_every = 8;            // --probe-every: with auto, every how many frames a batch is measured
-                                         // again (between, it takes the order that won: sorting_renderer.h)
+                                         // again (between, it takes the order that won: sort_memory.h)
     // --sort-batch-cost, --sort-ray-cost: with auto, what a sort costs, in the hierarchy's pair tests, per batch and
     // per ray: a kept sort must save more pairs than that when checked (order_choice.h: sort_pays).
     unsigned batch_cost = kSortBatchCost;

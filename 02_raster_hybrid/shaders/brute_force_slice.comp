@@ -1,5 +1,5 @@
 #version 450 core
-// Stage 02's traversal as a batch traversal (wavefront.h: Traversal::trace_batch / shadow_batch): brute force over a
+// Stage 02's traversal as a batch traversal (traversal.h: Traversal::trace_batch): brute force over a
 // pass' whole queue, one slice of triangles [bf_slice_first, bf_slice_first + bf_slice_count) per dispatch. Each
 // ray's result carries over from slice to slice (the closest hit so far, or whether it is already blocked), and the
 // slices go in increasing triangle order, so the hits, ties and test counts are exactly those of one loop over all

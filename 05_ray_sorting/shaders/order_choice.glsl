@@ -14,7 +14,7 @@
 #define OC_TALLY_SIZE 6u
 // The frame's choices, one word per batch (its kind's first OC_RECORDS batches): 0, 1 or 2 as oc_choice returns it,
 // OC_NO_RECORD where no batch chose. The renderer reads them with the tally, and until a batch is measured again it
-// takes the order that won (sorting_renderer.h: BatchMemory).
+// takes the order that won (sort_memory.h).
 #define OC_RECORDS 64u
 #define OC_NO_RECORD 0xffffffffu
 

@@ -1,5 +1,5 @@
 #version 450 core
-// --sort auto (sorting_renderer.h): how tight stage 04's lowest nodes would be over the batch in one order (the
+// --sort auto (sort_auto.h): how tight stage 04's lowest nodes would be over the batch in one order (the
 // queue's, or a sorted one). Thread g builds node g of level 1 exactly as rh_build.comp does (rh_leaf, rh_union over
 // the B rays the order puts at [gB, gB + B)) and measures its beam width where it meets the scene: radius
 // + L sin(spread), the width rh_split_rays compares with an object node, at L = the longest ray of the node (tmax |d|)

@@ -3,7 +3,7 @@
 // Any hit before the light (t < tmax) blocks it, so the traversal may stop at the first hit it finds (trace_any):
 // wf_occluded[i] = 1 if blocked. shadow_collect.comp then adds the unblocked lights. Compiled only when the scene
 // calls for shadows, with the stage's traversal (which defines trace_any) included before this file by
-// rt::gpu::Wavefront. A stage with a batch traversal (Traversal::shadow_batch) replaces this pass.
+// rt::gpu::Wavefront. A batch traversal (Traversal::trace_batch, traversal.h) replaces this pass.
 #include "wavefront.glsl"
 
 layout(local_size_x = 64) in;
