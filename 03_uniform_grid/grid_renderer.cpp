@@ -29,10 +29,11 @@ public:
 
 private:
     gpu::PrimaryVisibility& chosen() {
-        if (options_.trace_primary) return traced_;
-        return raster_;
+        return options_.trace_primary ? static_cast<gpu::PrimaryVisibility&>(traced_) : raster_;
     }
-    const gpu::PrimaryVisibility& chosen() const { return const_cast<GridPrimary*>(this)->chosen(); }
+    const gpu::PrimaryVisibility& chosen() const {
+        return options_.trace_primary ? static_cast<const gpu::PrimaryVisibility&>(traced_) : raster_;
+    }
     const GridOptions& options_;
     RasterizedPrimary raster_;
     gpu::TracedPrimary traced_;

@@ -24,9 +24,7 @@ GpuStage::GpuStage(std::unique_ptr<PrimaryVisibility> primary, std::unique_ptr<T
     : primary_(std::move(primary)), traversal_(std::move(traversal)) {}
 
 GpuStage::~GpuStage() {
-    shared_.reset();   // GL objects go before the context
-    traversal_.reset();
-    primary_.reset();
+    shared_.reset();   // GL objects go before the context (the traversal's and primary's by declaration order)
 }
 
 void GpuStage::add_options(CLI::App& app) {

@@ -75,6 +75,7 @@ public:
     // Per pass (wavefront.h). A GLSL traversal: its file (relative to the shader root), the defines it needs, and
     // bind(), called before the trace and shadow passes. A batch traversal leaves glsl() empty.
     virtual std::string glsl() const { return {}; }
+    bool traces_batches() const { return glsl().empty(); }   // a batch traversal: trace_batch replaces the passes
     virtual ShaderDefines defines() const { return {}; }
     virtual void bind() const {}
     // A batch traversal's pass: shadow rays (any hit) or traced rays (closest hit).
@@ -97,7 +98,8 @@ public:
 // A GLSL traversal with nothing to build or bind (tests: 02's brute_force.glsl traced per ray).
 class GlslTraversal : public Traversal {
 public:
-    explicit GlslTraversal(std::string glsl, ShaderDefines defines = {}) : glsl_(std::move(glsl)), defines_(defines) {}
+    explicit GlslTraversal(std::string glsl, ShaderDefines defines = {})
+        : glsl_(std::move(glsl)), defines_(std::move(defines)) {}
     std::string glsl() const override { return glsl_; }
     ShaderDefines defines() const override { return defines_; }
 

@@ -116,7 +116,7 @@ Program Wavefront::compile(const std::string& pass, bool with_traversal) const {
 }
 
 void Wavefront::compile_programs() {
-    const bool batches = traversal_.glsl().empty();   // a batch traversal replaces the trace and shadow passes
+    const bool batches = traversal_.traces_batches();   // then no trace and shadow passes of the pipeline's own
     shade_ = compile("shade.comp", false);
     resolve_ = compile("resolve.comp", false);
     shadow_ = shadows_ && !batches ? compile("shadow.comp", true) : Program();
@@ -225,7 +225,7 @@ void Wavefront::shade_sample(const Program& primary_pass, const Program* deferre
 // Trace programs for camera rays: the stage's trace pass may not be compiled (a scene without reflections and
 // refractions), but camera rays need it.
 void Wavefront::prepare_camera_tracing() {
-    if (!trace_ && !traversal_.glsl().empty()) {
+    if (!trace_ && !traversal_.traces_batches()) {
         trace_ = compile("trace.comp", true);
         set_uniforms(trace_);
     }
@@ -391,7 +391,7 @@ void Wavefront::run_traversal(bool shadow, Buffer& rays, std::size_t first, std:
     const char* name = shadow ? "shadow" : "trace";
     const PassTimer timed(timer, name);
     results_.reserve(count * (shadow ? sizeof(std::uint32_t) : sizeof(WavefrontTraceResult)));
-    if (traversal_.glsl().empty()) {
+    if (traversal_.traces_batches()) {
         traversal_.trace_batch({rays, first, count, results_, tests_per_pixel_ ? &tests_per_pixel_ : nullptr, *this,
                                 std::move(runs), triangles_},
                                shadow);
